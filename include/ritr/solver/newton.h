@@ -1,0 +1,70 @@
+#pragma once
+// Projected Newton for one implicit step: minimise E(z) over the free entries of z while
+// prescribed ("kinematic") entries -- Dirichlet nodes and scripted obstacle vertices -- are
+// driven to their targets inside the same line search, so that continuous collision
+// detection sees their motion too. Armijo backtracking starts from the largest step that
+// CCD certifies as intersection-free.
+#include <ritr/solver/sparse_cholesky.h>
+
+#include <Eigen/Sparse>
+
+#include <vector>
+
+namespace ritr
+{
+  using Triplets = std::vector<Eigen::Triplet<double>>;
+
+  // The objective as the solver sees it.
+  class NewtonObjective
+  {
+  public:
+    virtual ~NewtonObjective() = default;
+    // Called once per iteration before derivatives (active contact set, barrier stiffness).
+    virtual void   begin_iteration(const Eigen::VectorXd &z) { (void)z; }
+    virtual double value(const Eigen::VectorXd &z) = 0;  // +infinity when inadmissible
+    virtual void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) = 0;
+    virtual void   hessian(const Eigen::VectorXd &z, Triplets &h) = 0;  // positive semi-definite
+    // Largest fraction of dz that is certified intersection-free (1 without contact).
+    virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
+    {
+      (void)z;
+      (void)dz;
+      return 1.0;
+    }
+  };
+
+  struct NewtonSettings
+  {
+    double       tolerance      = 1e-6;  // on the infinity norm of the Newton step
+    unsigned int max_iterations = 200;
+    double       armijo         = 1e-4;
+    double       min_step       = 1e-12;  // backtracking gives up below this fraction
+  };
+
+  struct NewtonResult
+  {
+    bool         converged          = false;
+    unsigned int iterations         = 0;
+    unsigned int line_search_trials = 0;
+    double       energy             = 0;
+    double       last_step_norm     = 0;
+    std::string  failure;  // why it did not converge
+  };
+
+  class NewtonSolver
+  {
+  public:
+    // `kinematic[i]` marks prescribed entries; `targets` holds their values at the end of
+    // the step (entries of free unknowns are ignored).
+    NewtonResult minimize(NewtonObjective &objective, Eigen::VectorXd &z,
+                          const std::vector<bool> &kinematic, const Eigen::VectorXd &targets,
+                          const NewtonSettings &settings);
+
+    const SparseCholesky &linear_solver() const { return cholesky_; }
+    double seconds_in_linear_solves() const { return linear_seconds_; }
+
+  private:
+    SparseCholesky cholesky_;
+    double         linear_seconds_ = 0;
+  };
+} // namespace ritr

@@ -1,0 +1,253 @@
+#include <ritr/contact/distance.h>
+
+#include <stdexcept>
+
+namespace ritr::contact
+{
+  namespace
+  {
+    template <int dim>
+    using Vec = Eigen::Matrix<double, dim, 1>;
+
+    template <int dim>
+    Vec<dim> point(const StencilVector<dim> &x, const int i)
+    {
+      return x.template segment<dim>(i * dim);
+    }
+
+    DistanceClass point_point(const int a, const int b)
+    {
+      return {DistanceType::point_point, {{a, b, -1, -1}}};
+    }
+
+    // Point p (slot sp) against segment a-b (slots sa, sb); also returns the squared
+    // distance so that callers can take minima over several segments.
+    template <int dim>
+    DistanceClass classify_point_segment(const Vec<dim> &p, const Vec<dim> &a, const Vec<dim> &b,
+                                         const int sp, const int sa, const int sb,
+                                         double &dist_sqr)
+    {
+      const Vec<dim> e  = b - a;
+      const double   ee = e.squaredNorm();
+      const double   t  = ee > 0.0 ? (p - a).dot(e) / ee : 0.0;
+      if (t <= 0.0)
+        {
+          dist_sqr = (p - a).squaredNorm();
+          return point_point(sp, sa);
+        }
+      if (t >= 1.0)
+        {
+          dist_sqr = (p - b).squaredNorm();
+          return point_point(sp, sb);
+        }
+      dist_sqr = (p - a - t * e).squaredNorm();
+      return {DistanceType::point_line, {{sp, sa, sb, -1}}};
+    }
+
+    DistanceClass classify_point_triangle(const Vec<3> &p, const Vec<3> &t0, const Vec<3> &t1,
+                                          const Vec<3> &t2)
+    {
+      const Vec<3> e1 = t1 - t0, e2 = t2 - t0, w = p - t0;
+      const double a = e1.squaredNorm(), b = e1.dot(e2), c = e2.squaredNorm();
+      const double det = e1.cross(e2).squaredNorm();
+      if (det > parallel_threshold * a * c)
+        {
+          // Barycentric coordinates of the projection onto the plane. The squared distance
+          // is convex in them, so if the projection is inside it is the minimiser,
+          // otherwise the minimum is on the boundary.
+          const double r1 = e1.dot(w), r2 = e2.dot(w);
+          const double u  = (c * r1 - b * r2) / det;
+          const double v  = (a * r2 - b * r1) / det;
+          if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
+            return {DistanceType::point_plane, {{0, 1, 2, 3}}};
+        }
+      double        best_d = 0.0, d = 0.0;
+      DistanceClass best = classify_point_segment<3>(p, t0, t1, 0, 1, 2, best_d);
+      DistanceClass cls  = classify_point_segment<3>(p, t1, t2, 0, 2, 3, d);
+      if (d < best_d)
+        best = cls, best_d = d;
+      cls = classify_point_segment<3>(p, t2, t0, 0, 3, 1, d);
+      if (d < best_d)
+        best = cls;
+      return best;
+    }
+
+    DistanceClass classify_edge_edge(const Vec<3> &a0, const Vec<3> &a1, const Vec<3> &b0,
+                                     const Vec<3> &b1)
+    {
+      const Vec<3> ea = a1 - a0, eb = b1 - b0, w = a0 - b0;
+      const double a = ea.squaredNorm(), b = ea.dot(eb), c = eb.squaredNorm();
+      const double det = ea.cross(eb).squaredNorm(); // = ac - b^2 without cancellation
+      if (det > parallel_threshold * a * c)
+        {
+          const double d = ea.dot(w), e = eb.dot(w);
+          const double s = (b * e - c * d) / det;
+          const double t = (a * e - b * d) / det;
+          // |a0 + s ea - b0 - t eb|^2 is convex in (s, t): an interior stationary point is
+          // the minimiser; otherwise the minimum is on the boundary of the unit square.
+          if (s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)
+            return {DistanceType::line_line, {{0, 1, 2, 3}}};
+        }
+      double        best_d = 0.0, dd = 0.0;
+      DistanceClass best = classify_point_segment<3>(a0, b0, b1, 0, 2, 3, best_d);
+      DistanceClass cls  = classify_point_segment<3>(a1, b0, b1, 1, 2, 3, dd);
+      if (dd < best_d)
+        best = cls, best_d = dd;
+      cls = classify_point_segment<3>(b0, a0, a1, 2, 0, 1, dd);
+      if (dd < best_d)
+        best = cls, best_d = dd;
+      cls = classify_point_segment<3>(b1, a0, a1, 3, 0, 1, dd);
+      if (dd < best_d)
+        best = cls;
+      return best;
+    }
+
+    template <int dim>
+    StencilVector<dim> stack(std::initializer_list<Vec<dim>> points)
+    {
+      StencilVector<dim> x = StencilVector<dim>::Zero();
+      int                i = 0;
+      for (const auto &p : points)
+        x.template segment<dim>(dim * i++) = p;
+      return x;
+    }
+  } // namespace
+
+  template <int dim>
+  DistanceClass classify(const ContactKind kind, const StencilVector<dim> &x)
+  {
+    if constexpr (dim == 1)
+      {
+        if (kind == ContactKind::vertex_vertex)
+          return point_point(0, 1);
+      }
+    else if constexpr (dim == 2)
+      {
+        if (kind == ContactKind::point_edge)
+          {
+            double d;
+            return classify_point_segment<2>(point<2>(x, 0), point<2>(x, 1), point<2>(x, 2), 0,
+                                             1, 2, d);
+          }
+      }
+    else
+      {
+        if (kind == ContactKind::point_triangle)
+          return classify_point_triangle(point<3>(x, 0), point<3>(x, 1), point<3>(x, 2),
+                                         point<3>(x, 3));
+        if (kind == ContactKind::edge_edge)
+          return classify_edge_edge(point<3>(x, 0), point<3>(x, 1), point<3>(x, 2),
+                                    point<3>(x, 3));
+      }
+    throw std::invalid_argument("contact kind not available in this dimension");
+  }
+
+  template <int dim>
+  double distance_sqr(const ContactKind kind, const StencilVector<dim> &x)
+  {
+    return typed_distance_sqr<dim, double>(classify<dim>(kind, x), to_kernel_points<dim>(x));
+  }
+
+  template <int dim>
+  double distance_sqr(const ContactKind kind, const StencilVector<dim> &x,
+                      StencilVector<dim> &grad, StencilMatrix<dim> &hess)
+  {
+    using Dual   = SecondOrderDual<stencil_dofs<dim>>;
+    const Dual d = typed_distance_sqr<dim, Dual>(classify<dim>(kind, x), to_dual_points<dim>(x));
+    grad         = d.grad;
+    hess         = d.hess;
+    return d.value;
+  }
+
+  template <int dim>
+  Eigen::Vector2d closest_point_parameters(const DistanceClass &cls, const StencilVector<dim> &x)
+  {
+    const auto &s = cls.slots;
+    switch (cls.type)
+      {
+        case DistanceType::point_point:
+          break;
+        case DistanceType::point_line:
+          if constexpr (dim >= 2)
+            {
+              const Vec<dim> e = point<dim>(x, s[2]) - point<dim>(x, s[1]);
+              const double   t = (point<dim>(x, s[0]) - point<dim>(x, s[1])).dot(e) / e.squaredNorm();
+              return {t, 0.0};
+            }
+          break;
+        case DistanceType::point_plane:
+          if constexpr (dim == 3)
+            {
+              const Vec<3> t0 = point<3>(x, s[1]);
+              const Vec<3> e1 = point<3>(x, s[2]) - t0, e2 = point<3>(x, s[3]) - t0;
+              const Vec<3> w  = point<3>(x, s[0]) - t0;
+              const double a = e1.squaredNorm(), b = e1.dot(e2), c = e2.squaredNorm();
+              const double det = e1.cross(e2).squaredNorm();
+              const double r1 = e1.dot(w), r2 = e2.dot(w);
+              return {(c * r1 - b * r2) / det, (a * r2 - b * r1) / det};
+            }
+          break;
+        case DistanceType::line_line:
+          if constexpr (dim == 3)
+            {
+              const Vec<3> a0 = point<3>(x, s[0]), b0 = point<3>(x, s[2]);
+              const Vec<3> ea = point<3>(x, s[1]) - a0, eb = point<3>(x, s[3]) - b0;
+              const Vec<3> w = a0 - b0;
+              const double a = ea.squaredNorm(), b = ea.dot(eb), c = eb.squaredNorm();
+              const double det = ea.cross(eb).squaredNorm();
+              const double d = ea.dot(w), e = eb.dot(w);
+              return {(b * e - c * d) / det, (a * e - b * d) / det};
+            }
+          break;
+      }
+    return {0.0, 0.0};
+  }
+
+  template <int dim>
+  double point_point_distance_sqr(const Eigen::Matrix<double, dim, 1> &a,
+                                  const Eigen::Matrix<double, dim, 1> &b)
+  {
+    return (a - b).squaredNorm();
+  }
+
+  template <int dim>
+  double point_edge_distance_sqr(const Eigen::Matrix<double, dim, 1> &p,
+                                 const Eigen::Matrix<double, dim, 1> &e0,
+                                 const Eigen::Matrix<double, dim, 1> &e1)
+  {
+    double d;
+    classify_point_segment<dim>(p, e0, e1, 0, 1, 2, d);
+    return d;
+  }
+
+  double point_triangle_distance_sqr(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
+                                     const Eigen::Vector3d &t1, const Eigen::Vector3d &t2)
+  {
+    return distance_sqr<3>(ContactKind::point_triangle, stack<3>({p, t0, t1, t2}));
+  }
+
+  double edge_edge_distance_sqr(const Eigen::Vector3d &ea0, const Eigen::Vector3d &ea1,
+                                const Eigen::Vector3d &eb0, const Eigen::Vector3d &eb1)
+  {
+    return distance_sqr<3>(ContactKind::edge_edge, stack<3>({ea0, ea1, eb0, eb1}));
+  }
+
+#define RITR_INSTANTIATE(dim)                                                                    \
+  template DistanceClass classify<dim>(ContactKind, const StencilVector<dim> &);              \
+  template double        distance_sqr<dim>(ContactKind, const StencilVector<dim> &);          \
+  template double        distance_sqr<dim>(ContactKind, const StencilVector<dim> &,           \
+                                    StencilVector<dim> &, StencilMatrix<dim> &);       \
+  template Eigen::Vector2d closest_point_parameters<dim>(const DistanceClass &,               \
+                                                         const StencilVector<dim> &);         \
+  template double point_point_distance_sqr<dim>(const Eigen::Matrix<double, dim, 1> &,        \
+                                                const Eigen::Matrix<double, dim, 1> &);
+  RITR_INSTANTIATE(1)
+  RITR_INSTANTIATE(2)
+  RITR_INSTANTIATE(3)
+#undef RITR_INSTANTIATE
+
+  template double point_edge_distance_sqr<2>(const Eigen::Vector2d &, const Eigen::Vector2d &,
+                                             const Eigen::Vector2d &);
+  template double point_edge_distance_sqr<3>(const Eigen::Vector3d &, const Eigen::Vector3d &,
+                                             const Eigen::Vector3d &);
+} // namespace ritr::contact

@@ -1,0 +1,289 @@
+#include <ritr/common/psd_projection.h>
+#include <ritr/elasticity/bulk_energy.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <cmath>
+
+namespace ritr
+{
+  template <int dim>
+  const std::array<std::array<double, dim + 1>, dim + 1> &unit_mass_coefficients()
+  {
+    static const auto coefficients = [] {
+      std::array<std::array<double, dim + 1>, dim + 1> m{};
+      // Degree-2 rule: exact for products of two linear shape functions.
+      const dealii::Quadrature<dim> q = dim == 1 ? dealii::Quadrature<dim>(dealii::QGauss<dim>(2)) :
+                                                   dealii::Quadrature<dim>(dealii::QGaussSimplex<dim>(2));
+      double total = 0;
+      for (unsigned int p = 0; p < q.size(); ++p)
+        {
+          std::array<double, dim + 1> lambda;
+          lambda[0] = 1.0;
+          for (int k = 0; k < dim; ++k)
+            {
+              lambda[k + 1] = q.point(p)[k];
+              lambda[0] -= q.point(p)[k];
+            }
+          total += q.weight(p);
+          for (int a = 0; a <= dim; ++a)
+            for (int b = 0; b <= dim; ++b)
+              m[a][b] += q.weight(p) * lambda[a] * lambda[b];
+        }
+      for (auto &row : m)
+        for (auto &v : row)
+          v /= total;
+      return m;
+    }();
+    return coefficients;
+  }
+
+  namespace
+  {
+    // Geometry of one P1 cell needed by the fast x-derivative path.
+    template <int dim>
+    struct CellGeometry
+    {
+      double                              measure;
+      std::array<std::array<double, dim>, dim + 1> shape_gradients;  // dN_a/dX_j
+      SmallMatrix<dim, double>            F;
+    };
+
+    template <int dim>
+    CellGeometry<dim> cell_geometry(const CellNodes<dim, double> &x, const CellNodes<dim, double> &u)
+    {
+      CellGeometry<dim> g;
+      const auto dm     = edge_matrix<dim, double>(u);
+      const auto dm_inv = inverse<dim, double>(dm);
+      g.measure         = determinant<dim, double>(dm) / factorial(dim);
+      for (int j = 0; j < dim; ++j)
+        {
+          g.shape_gradients[0][j] = 0;
+          for (int a = 1; a <= dim; ++a)
+            {
+              g.shape_gradients[a][j] = dm_inv[a - 1][j];
+              g.shape_gradients[0][j] -= dm_inv[a - 1][j];
+            }
+        }
+      g.F = multiply<dim, double>(edge_matrix<dim, double>(x), dm_inv);
+      return g;
+    }
+
+    // Psi, dPsi/dF and d2Psi/dF2 at F (flattened row-major: index k*dim + j).
+    template <int dim>
+    SecondOrderDual<dim * dim> energy_density_derivatives(const Material &m, const SmallMatrix<dim, double> &F)
+    {
+      SmallMatrix<dim, SecondOrderDual<dim * dim>> f;
+      for (int k = 0; k < dim; ++k)
+        for (int j = 0; j < dim; ++j)
+          f[k][j] = SecondOrderDual<dim * dim>::variable(k * dim + j, F[k][j]);
+      return strain_energy_density<dim, SecondOrderDual<dim * dim>>(m, f);
+    }
+
+    template <int dim>
+    void gather(const Eigen::VectorXd &v, const std::array<unsigned int, dim + 1> &cell,
+                CellNodes<dim, double> &out)
+    {
+      for (int a = 0; a <= dim; ++a)
+        for (int k = 0; k < dim; ++k)
+          out[a][k] = v[cell[a] * dim + k];
+    }
+
+    constexpr std::size_t grain = 256;
+  } // namespace
+
+  template <int dim>
+  BulkEnergy<dim>::BulkEnergy(const SimplexMesh<dim> &mesh, const std::vector<Material> &materials)
+    : mesh_(mesh)
+    , materials_(materials)
+    , x_pred_(Eigen::VectorXd::Zero(mesh.reference.size()))
+  {
+    for (const unsigned int id : mesh.cell_material)
+      if (id >= materials_.size())
+        throw std::runtime_error("cells have material id " + std::to_string(id) +
+                                 " but no material with that id is defined");
+  }
+
+  template <int dim>
+  double BulkEnergy<dim>::value(const Eigen::VectorXd &x, const Eigen::VectorXd &u) const
+  {
+    return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), grain), 0.0,
+      [&](const tbb::blocked_range<std::size_t> &range, double sum) {
+        CellNodes<dim, double> xe, ue, pe;
+        for (std::size_t c = range.begin(); c != range.end(); ++c)
+          {
+            gather<dim>(x, mesh_.cells[c], xe);
+            gather<dim>(u, mesh_.cells[c], ue);
+            gather<dim>(x_pred_, mesh_.cells[c], pe);
+            sum += cell_energy<dim, double>(cell_material(c), weights_, xe, ue, pe);
+          }
+        return sum;
+      },
+      std::plus<double>());
+  }
+
+  template <int dim>
+  void BulkEnergy<dim>::add_gradient(const Eigen::VectorXd &x, const Eigen::VectorXd &u,
+                                     Eigen::VectorXd &g) const
+  {
+    tbb::combinable<Eigen::VectorXd> partial([&] { return Eigen::VectorXd::Zero(g.size()).eval(); });
+    const auto &mass = unit_mass_coefficients<dim>();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), grain),
+                      [&](const tbb::blocked_range<std::size_t> &range) {
+                        Eigen::VectorXd       &local = partial.local();
+                        CellNodes<dim, double> xe, ue, pe;
+                        for (std::size_t c = range.begin(); c != range.end(); ++c)
+                          {
+                            const auto &cell = mesh_.cells[c];
+                            const auto &mat  = cell_material(c);
+                            gather<dim>(x, cell, xe);
+                            gather<dim>(u, cell, ue);
+                            gather<dim>(x_pred_, cell, pe);
+                            const auto geo = cell_geometry<dim>(xe, ue);
+                            const auto psi = energy_density_derivatives<dim>(mat, geo.F);
+                            for (int a = 0; a <= dim; ++a)
+                              for (int k = 0; k < dim; ++k)
+                                {
+                                  double d = 0;
+                                  for (int j = 0; j < dim; ++j)
+                                    d += psi.grad[k * dim + j] * geo.shape_gradients[a][j];
+                                  d -= mat.density / (dim + 1) * weights_.gravity[k];
+                                  d *= weights_.potential * geo.measure;
+                                  if (weights_.inertia != 0.0)
+                                    for (int b = 0; b <= dim; ++b)
+                                      d += weights_.inertia * mat.density * geo.measure * mass[a][b] *
+                                           (xe[b][k] - pe[b][k]);
+                                  local[cell[a] * dim + k] += d;
+                                }
+                          }
+                      });
+    partial.combine_each([&](const Eigen::VectorXd &v) { g += v; });
+  }
+
+  template <int dim>
+  void BulkEnergy<dim>::add_hessian(const Eigen::VectorXd &x, const Eigen::VectorXd &u,
+                                    const bool project, Triplets &hessian) const
+  {
+    constexpr int n = dim * (dim + 1);
+    using Local     = Eigen::Matrix<double, n, n>;
+    std::vector<Local> blocks(mesh_.n_cells());
+    const auto        &mass = unit_mass_coefficients<dim>();
+    tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), grain),
+      [&](const tbb::blocked_range<std::size_t> &range) {
+        CellNodes<dim, double> xe, ue;
+        for (std::size_t c = range.begin(); c != range.end(); ++c)
+          {
+            const auto &mat = cell_material(c);
+            gather<dim>(x, mesh_.cells[c], xe);
+            gather<dim>(u, mesh_.cells[c], ue);
+            const auto geo = cell_geometry<dim>(xe, ue);
+            auto       psi_hessian = energy_density_derivatives<dim>(mat, geo.F).hess.eval();
+            // The map F -> x is linear, so a PSD density Hessian gives a PSD element block.
+            if (project)
+              psi_hessian = project_to_psd(psi_hessian);
+            Local &block = blocks[c];
+            for (int a = 0; a <= dim; ++a)
+              for (int k = 0; k < dim; ++k)
+                for (int b = 0; b <= dim; ++b)
+                  for (int l = 0; l < dim; ++l)
+                    {
+                      double h = 0;
+                      for (int j = 0; j < dim; ++j)
+                        for (int m = 0; m < dim; ++m)
+                          h += psi_hessian(k * dim + j, l * dim + m) * geo.shape_gradients[a][j] *
+                               geo.shape_gradients[b][m];
+                      h *= weights_.potential * geo.measure;
+                      if (k == l)
+                        h += weights_.inertia * mat.density * geo.measure * mass[a][b];
+                      block(a * dim + k, b * dim + l) = h;
+                    }
+          }
+      });
+    hessian.reserve(hessian.size() + blocks.size() * n * n);
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      {
+        const auto &cell = mesh_.cells[c];
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            hessian.emplace_back(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim,
+                                 blocks[c](i, j));
+      }
+  }
+
+  template <int dim>
+  void BulkEnergy<dim>::joint_derivatives(const Eigen::VectorXd &x, const Eigen::VectorXd &u,
+                                          const bool project_uu, JointDerivatives &out) const
+  {
+    constexpr int n = dim * (dim + 1);
+    using Dual      = SecondOrderDual<2 * n>;
+    out.gx          = Eigen::VectorXd::Zero(x.size());
+    out.gu          = Eigen::VectorXd::Zero(u.size());
+    std::vector<Dual> cell_values(mesh_.n_cells());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), 64),
+                      [&](const tbb::blocked_range<std::size_t> &range) {
+                        CellNodes<dim, double> pe;
+                        CellNodes<dim, Dual>   xe, ue;
+                        for (std::size_t c = range.begin(); c != range.end(); ++c)
+                          {
+                            const auto &cell = mesh_.cells[c];
+                            gather<dim>(x_pred_, cell, pe);
+                            for (int a = 0; a <= dim; ++a)
+                              for (int k = 0; k < dim; ++k)
+                                {
+                                  xe[a][k] = Dual::variable(a * dim + k, x[cell[a] * dim + k]);
+                                  ue[a][k] = Dual::variable(n + a * dim + k, u[cell[a] * dim + k]);
+                                }
+                            cell_values[c] =
+                              cell_energy<dim, Dual>(cell_material(c), weights_, xe, ue, pe);
+                          }
+                      });
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      {
+        const auto &cell = mesh_.cells[c];
+        const auto &v    = cell_values[c];
+        const auto  dof  = [&](int i) { return cell[i / dim] * dim + i % dim; };
+        Eigen::Matrix<double, n, n> huu = v.hess.template bottomRightCorner<n, n>();
+        if (project_uu)
+          huu = project_to_psd(huu);
+        for (int i = 0; i < n; ++i)
+          {
+            out.gx[dof(i)] += v.grad[i];
+            out.gu[dof(i)] += v.grad[n + i];
+            for (int j = 0; j < n; ++j)
+              {
+                out.hxx.emplace_back(dof(i), dof(j), v.hess(i, j));
+                out.hxu.emplace_back(dof(i), dof(j), v.hess(i, n + j));
+                out.huu.emplace_back(dof(i), dof(j), huu(i, j));
+              }
+          }
+      }
+  }
+
+  template <int dim>
+  Eigen::VectorXd BulkEnergy<dim>::nodal_masses(const Eigen::VectorXd &u) const
+  {
+    Eigen::VectorXd m = Eigen::VectorXd::Zero(mesh_.n_nodes());
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      {
+        const double share = cell_material(c).density *
+                             simplex_measure<dim, double>(cell_nodes<dim>(u, mesh_.cells[c])) / (dim + 1);
+        for (const unsigned int node : mesh_.cells[c])
+          m[node] += share;
+      }
+    return m;
+  }
+
+  template class BulkEnergy<1>;
+  template class BulkEnergy<2>;
+  template class BulkEnergy<3>;
+  template const std::array<std::array<double, 2>, 2> &unit_mass_coefficients<1>();
+  template const std::array<std::array<double, 3>, 3> &unit_mass_coefficients<2>();
+  template const std::array<std::array<double, 4>, 4> &unit_mass_coefficients<3>();
+} // namespace ritr

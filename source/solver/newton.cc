@@ -1,0 +1,120 @@
+#include <ritr/solver/newton.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace ritr
+{
+  NewtonResult NewtonSolver::minimize(NewtonObjective &objective, Eigen::VectorXd &z,
+                                      const std::vector<bool> &kinematic,
+                                      const Eigen::VectorXd &targets, const NewtonSettings &settings)
+  {
+    const Eigen::Index n = z.size();
+    std::vector<int>   free_index(n, -1);
+    int                n_free = 0;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!kinematic[i])
+        free_index[i] = n_free++;
+
+    NewtonResult    result;
+    Eigen::VectorXd g(n), dz(n);
+    Triplets        h;
+    Eigen::SparseMatrix<double> reduced(n_free, n_free);
+    Triplets                    reduced_triplets;
+
+    for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations)
+      {
+        objective.begin_iteration(z);
+        const double e0 = objective.value(z);
+        if (!std::isfinite(e0))
+          {
+            result.failure = "the energy is not finite at the start of the iteration";
+            return result;
+          }
+        g.setZero();
+        objective.gradient(z, g);
+        h.clear();
+        objective.hessian(z, h);
+
+        // Prescribed part of the step, then the free part from
+        // H_ff dz_f = -g_f - H_fk dz_k.
+        dz.setZero();
+        bool kinematic_pending = false;
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (kinematic[i])
+            {
+              dz[i] = targets[i] - z[i];
+              kinematic_pending |= dz[i] != 0.0;
+            }
+        Eigen::VectorXd rhs(n_free);
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (free_index[i] >= 0)
+            rhs[free_index[i]] = -g[i];
+        reduced_triplets.clear();
+        reduced_triplets.reserve(h.size());
+        for (const auto &t : h)
+          {
+            const int r = free_index[t.row()], c = free_index[t.col()];
+            if (r >= 0 && c >= 0)
+              {
+                if (r >= c)
+                  reduced_triplets.emplace_back(r, c, t.value());
+              }
+            else if (r >= 0)
+              rhs[r] -= t.value() * dz[t.col()];
+          }
+        reduced.setFromTriplets(reduced_triplets.begin(), reduced_triplets.end());
+        reduced.makeCompressed();
+        const auto start = std::chrono::steady_clock::now();
+        cholesky_.factorize(reduced);
+        const Eigen::VectorXd dz_free = cholesky_.solve(rhs);
+        linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (free_index[i] >= 0)
+            dz[i] = dz_free[free_index[i]];
+
+        result.last_step_norm = dz.lpNorm<Eigen::Infinity>();
+        result.energy         = e0;
+        if (!kinematic_pending && result.last_step_norm <= settings.tolerance)
+          {
+            result.converged = true;
+            return result;
+          }
+
+        // Backtracking from the CCD-certified step. While prescribed entries are still
+        // moving the direction need not be a descent direction, so only finiteness (no
+        // inversion) is required then; afterwards Armijo's sufficient decrease.
+        double       alpha      = std::min(1.0, objective.max_step(z, dz));
+        const double decrease   = g.dot(dz);
+        const bool   use_armijo = !kinematic_pending;
+        Eigen::VectorXd trial;
+        for (;; alpha *= 0.5)
+          {
+            ++result.line_search_trials;
+            if (alpha < settings.min_step)
+              {
+                // A converged-looking but tiny step near machine precision counts as done.
+                if (!kinematic_pending && std::abs(decrease) <= 1e-12 * std::max(1.0, std::abs(e0)))
+                  {
+                    result.converged = true;
+                    return result;
+                  }
+                result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
+                return result;
+              }
+            trial          = z + alpha * dz;
+            const double e = objective.value(trial);
+            if (std::isfinite(e) && (!use_armijo || e <= e0 + settings.armijo * alpha * decrease))
+              break;
+          }
+        z = trial;
+        // Kinematic entries that reached their target are snapped exactly.
+        if (alpha == 1.0)
+          for (Eigen::Index i = 0; i < n; ++i)
+            if (kinematic[i])
+              z[i] = targets[i];
+      }
+    result.failure = "no convergence in " + std::to_string(settings.max_iterations) + " Newton iterations";
+    return result;
+  }
+} // namespace ritr

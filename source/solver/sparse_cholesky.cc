@@ -1,0 +1,49 @@
+#include <ritr/solver/sparse_cholesky.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace ritr
+{
+  bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double> &m) const
+  {
+    return analysed_ && static_cast<std::size_t>(m.outerSize() + 1) == outer_.size() &&
+           static_cast<std::size_t>(m.nonZeros()) == inner_.size() &&
+           std::equal(outer_.begin(), outer_.end(), m.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), m.innerIndexPtr());
+  }
+
+  double SparseCholesky::factorize(const Eigen::SparseMatrix<double> &matrix)
+  {
+    if (!matrix.isCompressed())
+      throw std::logic_error("SparseCholesky needs a compressed matrix");
+    if (!same_pattern(matrix))
+      {
+        llt_.analyzePattern(matrix);
+        outer_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
+        inner_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
+        analysed_ = true;
+        ++n_analyses_;
+      }
+    double shift = 0;
+    llt_.setShift(0.0);
+    llt_.factorize(matrix);
+    ++n_factorizations_;
+    if (llt_.info() == Eigen::Success)
+      return 0.0;
+    // Projected Hessians are only semi-definite (e.g. statics with a free rigid mode):
+    // regularise relative to the diagonal's scale.
+    const double scale = std::max(matrix.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+    for (shift = 1e-12 * scale; shift < scale; shift *= 100)
+      {
+        llt_.setShift(shift);
+        llt_.factorize(matrix);
+        ++n_factorizations_;
+        if (llt_.info() == Eigen::Success)
+          return shift;
+      }
+    throw std::runtime_error("the Newton system could not be factorized");
+  }
+
+  Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd &rhs) const { return llt_.solve(rhs); }
+} // namespace ritr
