@@ -277,7 +277,9 @@ namespace ritr
       {
         dealii::Triangulation<dim> tria;
         generate_body<dim>(body, tria);
+        const unsigned int part = mesh.node_part.size() == 0 ? 0 : mesh.node_part.back() + 1;
         append_mesh(mesh, extract_mesh<dim>(body, tria));
+        mesh.node_part.resize(mesh.n_nodes(), part);
       }
     return mesh;
   }
@@ -300,7 +302,15 @@ namespace ritr
     tria.create_triangulation(vertices, cells, dealii::SubCellData());
     BodyDescription body;
     body.shape = "file";  // keep material ids; boundary ids are restored below
-    SimplexMesh<dim> fine = extract_mesh<dim>(body, (tria.refine_global(1), tria));
+    tria.refine_global(1);
+    SimplexMesh<dim> fine = extract_mesh<dim>(body, tria);
+    // Nodes keep the body part of the nodes of the coarse cell they lie in (by body id).
+    std::vector<unsigned int> part_of_body(mesh.n_bodies(), 0);
+    for (unsigned int i = 0; i < mesh.n_nodes() && !mesh.node_part.empty(); ++i)
+      part_of_body[mesh.node_body[i]] = mesh.node_part[i];
+    fine.node_part.resize(fine.n_nodes());
+    for (unsigned int i = 0; i < fine.n_nodes(); ++i)
+      fine.node_part[i] = part_of_body.empty() ? 0 : part_of_body[std::min<unsigned>(fine.node_body[i], part_of_body.size() - 1)];
 
     // A fine boundary facet inherits the id of the coarse facet whose plane contains it.
     for (unsigned int f = 0; f < fine.boundary_facets.size(); ++f)

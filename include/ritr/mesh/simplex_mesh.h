@@ -30,6 +30,7 @@ namespace ritr
     std::vector<Facet>    boundary_facets;  // oriented with outward normal (2D: CCW boundary)
     std::vector<unsigned> boundary_ids;     // boundary id per facet
     std::vector<unsigned> node_body;        // connected component (body) of each node
+    std::vector<unsigned> node_part;        // index of the BodyDescription it was built from
 
     unsigned int n_nodes() const { return reference.size() / dim; }
     unsigned int n_cells() const { return cells.size(); }

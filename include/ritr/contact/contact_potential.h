@@ -1,0 +1,82 @@
+#pragma once
+// Couples the IPC module to the simulation: the collision surface made of the mesh's
+// boundary facets and the rigid obstacles, the barrier weights (reference boundary
+// measure), and barrier + lagged friction energies over the simulation state vector
+// z = [body node positions, obstacle vertex positions].
+#include <ritr/contact/barrier.h>
+#include <ritr/contact/ccd.h>
+#include <ritr/contact/collision_surface.h>
+#include <ritr/contact/constraints.h>
+#include <ritr/contact/friction.h>
+#include <ritr/contact/rigid_obstacle.h>
+#include <ritr/mesh/simplex_mesh.h>
+
+#include <Eigen/Sparse>
+
+namespace ritr
+{
+  struct ContactSettings
+  {
+    double dhat                 = 1e-3;
+    double friction_coefficient = 0.0;
+    double epsilon_v_times_h    = 1e-5;
+    bool   self_contact         = true;
+  };
+
+  template <int dim>
+  class ContactPotential
+  {
+  public:
+    ContactPotential(const SimplexMesh<dim> &mesh,
+                     const std::vector<contact::RigidObstacle<dim>> &obstacles,
+                     const ContactSettings &settings);
+
+    // Reference boundary measures of the body nodes at reference positions u (the barrier
+    // weights; obstacle vertices weigh by their own surface measure).
+    void set_reference(const Eigen::VectorXd &u);
+
+    // Barrier stiffness kappa multiplies the barrier sum B (IPC's convention: the
+    // incremental potential carries kappa B, not h^2 kappa B).
+    void   set_stiffness(double kappa) { kappa_ = kappa; }
+    double stiffness() const { return kappa_; }
+
+    // Lagged friction: normal forces and tangents from z_lagged, slip measured from z_start.
+    void update_friction(const Eigen::VectorXd &z_lagged, const Eigen::VectorXd &z_start);
+    void clear_friction() { friction_.clear(); }
+
+    double value(const Eigen::VectorXd &z) const;  // kappa B + D, +inf on contact
+    void   add_gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) const;
+    void   add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h) const;
+    // Unscaled barrier gradient dB/dz (for the stiffness initialisation).
+    Eigen::VectorXd barrier_gradient(const Eigen::VectorXd &z) const;
+
+    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+    double minimum_distance(const Eigen::VectorXd &z) const;  // over all primitive pairs
+    double active_minimum_distance(const Eigen::VectorXd &z) const;  // over pairs within dhat
+    double bbox_diagonal(const Eigen::VectorXd &z) const;
+
+    unsigned int n_collision_vertices() const { return surface_.n_vertices; }
+    unsigned int n_state_vertices() const { return n_state_vertices_; }
+    const contact::CollisionSurface<dim> &surface() const { return surface_; }
+
+  private:
+    Eigen::MatrixXd                      collision_positions(const Eigen::VectorXd &z) const;
+    std::vector<contact::Constraint>     active_constraints(const Eigen::MatrixXd &V) const;
+    // Adds a collision-vertex gradient / Hessian into state numbering.
+    void scatter_gradient(const Eigen::VectorXd &gc, double scale, Eigen::VectorXd &g) const;
+    void scatter_hessian(const std::vector<Eigen::Triplet<double>> &hc, double scale,
+                         std::vector<Eigen::Triplet<double>> &h) const;
+
+    ContactSettings                 settings_;
+    contact::CollisionSurface<dim>  surface_;
+    std::vector<int>                state_vertex_;  // collision vertex -> state vertex
+    unsigned int                    n_state_vertices_ = 0;
+    Eigen::MatrixXd                 rest_positions_;
+    contact::ConstraintWeights      weights_;
+    std::vector<contact::FrictionConstraint<dim>> friction_;
+    Eigen::MatrixXd                 friction_start_;
+    double                          kappa_ = 0;
+    const SimplexMesh<dim>         &mesh_;
+    std::vector<unsigned int>       facet_owner_;  // boundary facet per surface primitive
+  };
+} // namespace ritr

@@ -1,0 +1,27 @@
+#pragma once
+// Per-cell measures reported in the outputs and checked as invariants.
+#include <ritr/mesh/simplex_mesh.h>
+
+#include <vector>
+
+namespace ritr
+{
+  // Scalar strain |F^T F - I|_F / 2 of each cell of the deformation u -> x.
+  template <int dim>
+  std::vector<double> cell_strains(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
+                                   const Eigen::VectorXd &u);
+
+  // Shape quality of each cell at positions p, in (0, 1] (1 for the regular simplex):
+  // dim * (dim! measure)^(2/dim) / (sum of squared edge lengths) scaled to 1 at the
+  // regular simplex; 1 for line segments.
+  template <int dim>
+  std::vector<double> cell_qualities(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &p);
+
+  // Smallest deformed Jacobian det F = measure(x) / measure(u) over the cells.
+  template <int dim>
+  double min_deformed_jacobian(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
+                               const Eigen::VectorXd &u);
+
+  // Peak resident set size of this process in bytes.
+  long peak_rss_bytes();
+} // namespace ritr

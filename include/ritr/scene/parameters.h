@@ -1,0 +1,27 @@
+#pragma once
+// The .prm schema (deal.II ParameterHandler): declaration with documentation and defaults,
+// parsing, and validation into a Scene with one-line error messages.
+#include <ritr/scene/scene.h>
+
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+namespace ritr
+{
+  // Bad input: the message names the file, the entry and what is wrong.
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // Reads and validates a scene; throws InputError.
+  Scene read_scene(const std::string &parameter_file);
+
+  // The scene of prm/default.prm's defaults (used when no file is given is handled by the
+  // caller); every parameter with documentation and default, in .prm syntax or Markdown.
+  void print_parameters(std::ostream &out, bool markdown);
+
+  constexpr unsigned int max_bodies = 8, max_materials = 8, max_dirichlet = 4, max_obstacles = 8;
+} // namespace ritr

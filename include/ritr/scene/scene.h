@@ -1,0 +1,83 @@
+#pragma once
+// A scene as read from a .prm file: everything a simulation needs, validated, with no
+// deal.II types in it. Expressions (initial velocity, Dirichlet displacement, obstacle
+// motion) stay strings here and are compiled by deal.II's FunctionParser where used.
+#include <ritr/elasticity/material.h>
+#include <ritr/mesh/mesh_builder.h>
+
+#include <string>
+#include <vector>
+
+namespace ritr
+{
+  struct BodyScene
+  {
+    BodyDescription geometry;
+    std::string     initial_velocity;  // vector expression in x,y,z ("0; -1")
+  };
+
+  struct DirichletScene
+  {
+    std::vector<unsigned int> boundary_ids;  // nodes on these boundary facets
+    std::string               region;        // or nodes where this expression in x,y,z > 0
+    std::string               displacement;  // vector expression in x,y,z,t
+  };
+
+  struct ObstacleScene
+  {
+    std::string         type;  // plane|box|spikes|punch|file
+    std::string         file;  // .obj (3D triangles / 2D lines) or .msh surface
+    std::vector<double> point{0, 0, 0};   // plane point, box/punch centre, first spike tip base
+    std::vector<double> normal{0, 1, 0};  // plane normal
+    std::vector<double> size{1, 1, 1};    // plane extent / box and punch size / spikes row extent
+    unsigned int        count = 5;        // spikes
+    double              spike_height = 0.2;
+    std::string         translation;       // vector expression in t
+    std::string         rotation_angle;    // scalar expression in t (radians)
+    std::vector<double> rotation_axis{0, 0, 1};
+    std::vector<double> rotation_center{0, 0, 0};
+  };
+
+  struct ContactScene
+  {
+    bool        enabled              = true;
+    double      dhat                 = 1e-3;
+    double      barrier_stiffness    = 0;  // 0: adaptive (IPC's rule)
+    double      friction_coefficient = 0;
+    double      epsilon_v            = 1e-3;
+    unsigned    friction_iterations  = 1;
+    bool        self_contact         = true;
+  };
+
+  struct SolverScene
+  {
+    double       newton_tolerance = 1e-5;  // dynamics: on |dx|_inf / h (velocity units)
+    double       static_tolerance = 1e-8;  // statics: on |dx|_inf / bounding-box diagonal
+    unsigned int max_iterations   = 200;
+    unsigned int threads          = 0;  // 0: all cores
+  };
+
+  struct Scene
+  {
+    std::string parameter_file;
+    int         dimension = 2;
+    std::string mode      = "dynamic";  // dynamic | static
+    double      time_step = 0.01;
+    double      end_time  = 1.0;
+    std::string output_directory = "output";
+    unsigned    output_every     = 1;
+    bool        write_nodal_csv  = false;
+
+    std::vector<BodyScene>      bodies;
+    std::vector<Material>       materials;  // indexed by material id
+    std::vector<double>         gravity{0, 0, 0};
+    std::string                 load_factor = "1";  // scalar expression in t
+    std::vector<DirichletScene> dirichlet;
+    std::vector<ObstacleScene>  obstacles;
+    ContactScene                contact;
+    SolverScene                 solver;
+
+    bool dynamic() const { return mode == "dynamic"; }
+    unsigned int n_steps() const;
+  };
+} // namespace ritr

@@ -1,0 +1,95 @@
+#pragma once
+// A simulation run: builds the mesh, materials, obstacles and boundary conditions from a
+// Scene, validates the initial state, then steps in time (implicit Euler) or load
+// (statics), writing the outputs of the output contract after every step.
+#include <ritr/contact/contact_potential.h>
+#include <ritr/elasticity/bulk_energy.h>
+#include <ritr/scene/expression.h>
+#include <ritr/scene/scene.h>
+#include <ritr/solver/newton.h>
+#include <ritr/time/incremental_potential.h>
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+namespace ritr
+{
+  // A step that could not be solved; the run stops with exit code 3.
+  class ConvergenceError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // What one step did, for log.csv and the progress line.
+  struct StepReport
+  {
+    unsigned int step = 0;
+    double       time = 0;
+    double       energy = 0;
+    unsigned int newton_iterations = 0;
+    unsigned int outer_iterations  = 0;
+    unsigned int line_search_trials = 0;
+    double       min_distance = std::numeric_limits<double>::infinity();
+    double       min_reference_measure = 0;
+    double       min_deformed_jacobian = 0;
+    double       wall_seconds = 0;
+  };
+
+  template <int dim>
+  class Simulation
+  {
+  public:
+    // Builds everything and checks the initial state; throws InputError on bad input.
+    explicit Simulation(const Scene &scene);
+    ~Simulation();
+
+    // Runs all steps and writes the outputs; throws ConvergenceError.
+    void run();
+
+    // Single step, for tests and drivers that inspect the state between steps.
+    StepReport advance();
+
+    const SimplexMesh<dim> &mesh() const { return mesh_; }
+    const Eigen::VectorXd  &positions() const { return x_; }
+    const Eigen::VectorXd  &velocities() const { return v_; }
+    const Eigen::VectorXd  &reference() const { return u_; }
+    double                  time() const { return time_; }
+    const std::vector<StepReport> &history() const { return history_; }
+    const BulkEnergy<dim>  &bulk_energy() const { return *bulk_; }
+    // Physical contact force on every body node (zero without contact).
+    Eigen::VectorXd contact_forces() const;
+
+  private:
+    void setup_obstacles();
+    void setup_dirichlet();
+    void check_initial_state() const;
+    double signed_cell_measure(unsigned int cell) const;  // at the reference positions
+    Eigen::VectorXd state_targets(double t) const;  // kinematic entries at time t
+    Eigen::VectorXd state() const;
+    void write_step_output(unsigned int step);
+    void write_summary(double total_seconds) const;
+
+    Scene                                      scene_;
+    SimplexMesh<dim>                           mesh_;
+    Eigen::VectorXd                            u_, x_, v_;
+    std::unique_ptr<BulkEnergy<dim>>           bulk_;
+    std::vector<contact::RigidObstacle<dim>>   obstacles_;
+    std::unique_ptr<ContactPotential<dim>>     contact_;
+    std::unique_ptr<IncrementalPotential<dim>> potential_;
+    NewtonSolver                               newton_;
+    std::vector<bool>                          kinematic_;  // per state entry
+    std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition
+    std::vector<Expression<dim>>               dirichlet_displacements_;
+    std::optional<Expression<dim>>             load_factor_;
+    Eigen::VectorXd                            obstacle_positions_;  // at the current time
+    double                                     time_ = 0;
+    unsigned int                               step_ = 0;
+    double                                     kappa_max_ = 0;
+    std::vector<StepReport>                    history_;
+    std::vector<std::string>                   invariant_violations_;
+    struct Outputs;
+    std::unique_ptr<Outputs>                   outputs_;
+  };
+} // namespace ritr

@@ -1,0 +1,84 @@
+#include <ritr/metrics/mesh_metrics.h>
+
+#include <sys/resource.h>
+
+#include <cmath>
+
+namespace ritr
+{
+  template <int dim>
+  std::vector<double> cell_strains(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
+                                   const Eigen::VectorXd &u)
+  {
+    std::vector<double> s(mesh.n_cells());
+    for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+      {
+        const auto F = multiply<dim, double>(edge_matrix<dim, double>(cell_nodes<dim>(x, mesh.cells[c])),
+                                             inverse<dim, double>(edge_matrix<dim, double>(cell_nodes<dim>(u, mesh.cells[c]))));
+        double norm2 = 0;
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j)
+            {
+              double e = -(i == j ? 1.0 : 0.0);
+              for (int k = 0; k < dim; ++k)
+                e += F[k][i] * F[k][j];
+              norm2 += e * e;
+            }
+        s[c] = 0.5 * std::sqrt(norm2);
+      }
+    return s;
+  }
+
+  template <int dim>
+  std::vector<double> cell_qualities(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &p)
+  {
+    std::vector<double> q(mesh.n_cells(), 1.0);
+    if constexpr (dim > 1)
+      {
+        // Regular simplex with unit edges: measure sqrt(3)/4 (2D), sqrt(2)/12 (3D).
+        const double regular = dim == 2 ? std::sqrt(3.0) / 4 : std::sqrt(2.0) / 12;
+        const int    n_edges = dim == 2 ? 3 : 6;
+        for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+          {
+            const auto nodes = cell_nodes<dim>(p, mesh.cells[c]);
+            double     sum   = 0;
+            for (int a = 0; a <= dim; ++a)
+              for (int b = a + 1; b <= dim; ++b)
+                for (int k = 0; k < dim; ++k)
+                  sum += (nodes[a][k] - nodes[b][k]) * (nodes[a][k] - nodes[b][k]);
+            const double measure = simplex_measure<dim, double>(nodes);
+            const double mean_edge2 = sum / n_edges;
+            q[c] = measure <= 0 ? 0.0 : std::pow(measure / regular, 2.0 / dim) / mean_edge2;
+          }
+      }
+    return q;
+  }
+
+  template <int dim>
+  double min_deformed_jacobian(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
+                               const Eigen::VectorXd &u)
+  {
+    double j = std::numeric_limits<double>::max();
+    for (const auto &cell : mesh.cells)
+      j = std::min(j, simplex_measure<dim, double>(cell_nodes<dim>(x, cell)) /
+                        simplex_measure<dim, double>(cell_nodes<dim>(u, cell)));
+    return j;
+  }
+
+  long peak_rss_bytes()
+  {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss * 1024L;  // Linux reports kilobytes
+  }
+
+  template std::vector<double> cell_strains<1>(const SimplexMesh<1> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
+  template std::vector<double> cell_strains<2>(const SimplexMesh<2> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
+  template std::vector<double> cell_strains<3>(const SimplexMesh<3> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
+  template std::vector<double> cell_qualities<1>(const SimplexMesh<1> &, const Eigen::VectorXd &);
+  template std::vector<double> cell_qualities<2>(const SimplexMesh<2> &, const Eigen::VectorXd &);
+  template std::vector<double> cell_qualities<3>(const SimplexMesh<3> &, const Eigen::VectorXd &);
+  template double min_deformed_jacobian<1>(const SimplexMesh<1> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
+  template double min_deformed_jacobian<2>(const SimplexMesh<2> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
+  template double min_deformed_jacobian<3>(const SimplexMesh<3> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
+} // namespace ritr

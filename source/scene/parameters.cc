@@ -1,0 +1,370 @@
+#include <ritr/scene/expression.h>
+#include <ritr/scene/parameters.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace ritr
+{
+  namespace
+  {
+    using dealii::ParameterHandler;
+    namespace Patterns = dealii::Patterns;
+
+    const auto doubles  = [] { return Patterns::List(Patterns::Double(), 0, 3); };
+    const auto unsigneds = [] { return Patterns::List(Patterns::Integer(0), 0, 3); };
+
+    void declare(ParameterHandler &prm)
+    {
+      prm.declare_entry("dimension", "2", Patterns::Integer(1, 3), "Spatial dimension: 1 (rods), 2 (triangles, plane strain), 3 (tetrahedra).");
+      prm.declare_entry("mode", "dynamic", Patterns::Selection("dynamic|static"),
+                        "dynamic: implicit Euler elastodynamics; static: a sequence of equilibria (load-stepped in pseudo-time t).");
+      prm.declare_entry("time step", "0.01", Patterns::Double(0), "Time step h (dynamic) or load step (static).");
+      prm.declare_entry("end time", "1", Patterns::Double(0), "Simulated time; the number of steps is round(end time / time step).");
+      prm.declare_entry("output directory", "output", Patterns::Anything(), "Where results are written (created if missing; relative to the working directory).");
+      prm.declare_entry("output every", "1", Patterns::Integer(1), "Write VTU files every this many steps (log.csv gets every step).");
+      prm.declare_entry("write nodal csv", "false", Patterns::Bool(), "Also write nodes-NNNNN.csv with id, u, x, v per node.");
+
+      for (unsigned int b = 0; b < max_bodies; ++b)
+        {
+          prm.enter_subsection("Body " + std::to_string(b));
+          prm.declare_entry("enabled", b == 0 ? "true" : "false", Patterns::Bool(), "Whether this body exists.");
+          prm.declare_entry("shape", "rectangle", Patterns::Selection("interval|rectangle|box|disk|ball|file"), "interval (1D), rectangle (2D), box (3D), disk (2D), ball (3D) or file (gmsh .msh).");
+          prm.declare_entry("file", "", Patterns::Anything(), "gmsh mesh for shape = file, relative to the .prm file. Physical tags give material and boundary ids.");
+          prm.declare_entry("lower", "0,0,0", doubles(), "Lower corner (interval/rectangle/box).");
+          prm.declare_entry("upper", "1,1,1", doubles(), "Upper corner (interval/rectangle/box).");
+          prm.declare_entry("subdivisions", "1,1,1", unsigneds(), "Cells per direction before splitting into simplices.");
+          prm.declare_entry("center", "0,0,0", doubles(), "Centre of a disk or ball.");
+          prm.declare_entry("radius", "1", Patterns::Double(0), "Radius of a disk or ball.");
+          prm.declare_entry("shape refinements", "2", Patterns::Integer(0, 8), "Refinements of a disk/ball that follow its round boundary.");
+          prm.declare_entry("refinements", "0", Patterns::Integer(0, 8), "Uniform refinements by edge subdivision (each multiplies the cell count by 2^dim).");
+          prm.declare_entry("translation", "0,0,0", doubles(), "Shift applied to the body.");
+          prm.declare_entry("material id", "0", Patterns::Integer(0, max_materials - 1), "Material of generated bodies (files use their physical tags).");
+          prm.declare_entry("initial velocity", "0;0;0", Patterns::Anything(), "Initial velocity field: dim components separated by ';', in x,y,z.");
+          prm.leave_subsection();
+        }
+      for (unsigned int m = 0; m < max_materials; ++m)
+        {
+          prm.enter_subsection("Material " + std::to_string(m));
+          prm.declare_entry("model", "neo-hookean", Patterns::Selection("neo-hookean|linear|stvk"), "Hyperelastic model.");
+          prm.declare_entry("youngs modulus", "1e5", Patterns::Double(0), "Young's modulus E [Pa].");
+          prm.declare_entry("poisson ratio", "0.3", Patterns::Double(0, 0.5), "Poisson's ratio (ignored in 1D: a rod's modulus is E).");
+          prm.declare_entry("density", "1000", Patterns::Double(0), "Mass density [kg/m^dim].");
+          prm.leave_subsection();
+        }
+      prm.enter_subsection("Gravity");
+      prm.declare_entry("acceleration", "0,-9.81,0", doubles(), "Body force per unit mass (first dim components used).");
+      prm.declare_entry("load factor", "1", Patterns::Anything(), "Scalar expression in t scaling gravity (load stepping in statics, e.g. t/T).");
+      prm.leave_subsection();
+      for (unsigned int d = 0; d < max_dirichlet; ++d)
+        {
+          prm.enter_subsection("Dirichlet " + std::to_string(d));
+          prm.declare_entry("enabled", "false", Patterns::Bool(), "Whether this condition is applied.");
+          prm.declare_entry("boundary ids", "", unsigneds(), "Nodes on boundary facets with these ids are prescribed.");
+          prm.declare_entry("region", "", Patterns::Anything(), "Or: nodes where this expression of x,y,z is > 0 (e.g. 'x < 1e-6').");
+          prm.declare_entry("displacement", "0;0;0", Patterns::Anything(), "Prescribed displacement: dim components in x,y,z,t.");
+          prm.leave_subsection();
+        }
+      for (unsigned int o = 0; o < max_obstacles; ++o)
+        {
+          prm.enter_subsection("Obstacle " + std::to_string(o));
+          prm.declare_entry("type", "none", Patterns::Selection("none|plane|box|spikes|punch|file"), "Rigid obstacle: none, plane (ground), box, spikes (a row of sharp spikes), punch (a bar), file (.obj or .msh surface).");
+          prm.declare_entry("file", "", Patterns::Anything(), "Surface mesh for type = file, relative to the .prm file.");
+          prm.declare_entry("point", "0,0,0", doubles(), "plane: a point on it; box/punch: centre; spikes: centre of the row's base.");
+          prm.declare_entry("normal", "0,1,0", doubles(), "plane: outward normal (the side where bodies are).");
+          prm.declare_entry("size", "10,10,10", doubles(), "plane: extent; box/punch: edge lengths; spikes: row length (and depth in 3D).");
+          prm.declare_entry("count", "5", Patterns::Integer(1), "spikes: number of spikes (per row direction).");
+          prm.declare_entry("spike height", "0.2", Patterns::Double(0), "spikes: height of each spike.");
+          prm.declare_entry("translation", "0;0;0", Patterns::Anything(), "Scripted translation: dim components in t.");
+          prm.declare_entry("rotation angle", "0", Patterns::Anything(), "Scripted rotation angle [rad] in t, about the rotation center (and axis in 3D).");
+          prm.declare_entry("rotation axis", "0,0,1", doubles(), "3D rotation axis.");
+          prm.declare_entry("rotation center", "0,0,0", doubles(), "Centre of rotation.");
+          prm.leave_subsection();
+        }
+      prm.enter_subsection("Contact");
+      prm.declare_entry("enabled", "true", Patterns::Bool(), "IPC contact between bodies, with obstacles, and self-contact.");
+      prm.declare_entry("dhat", "1e-3", Patterns::Double(0), "Barrier activation distance.");
+      prm.declare_entry("barrier stiffness", "adaptive", Patterns::Anything(), "'adaptive' (IPC's initialisation and doubling rule) or a fixed positive value.");
+      prm.declare_entry("friction coefficient", "0", Patterns::Double(0), "Coulomb friction coefficient mu (0: frictionless).");
+      prm.declare_entry("epsilon v", "1e-3", Patterns::Double(0), "Friction smoothing velocity eps_v [m/s].");
+      prm.declare_entry("friction iterations", "1", Patterns::Integer(1), "Lagged friction updates per step.");
+      prm.declare_entry("self contact", "true", Patterns::Bool(), "Contact within one body and between bodies.");
+      prm.leave_subsection();
+      prm.enter_subsection("Solver");
+      prm.declare_entry("newton tolerance", "1e-5", Patterns::Double(0), "Dynamics: stop when |dx|_inf / h < this (eps_e, velocity units).");
+      prm.declare_entry("static tolerance", "1e-8", Patterns::Double(0), "Statics: stop when |dx|_inf < this times the bounding-box diagonal.");
+      prm.declare_entry("max iterations", "200", Patterns::Integer(1), "Newton iterations per solve before the run stops (exit code 3).");
+      prm.declare_entry("threads", "0", Patterns::Integer(0), "Assembly threads (0: all cores).");
+      prm.leave_subsection();
+    }
+
+    std::vector<double> get_doubles(ParameterHandler &prm, const std::string &name)
+    {
+      std::vector<double> v;
+      std::stringstream   ss(prm.get(name));
+      std::string         item;
+      while (std::getline(ss, item, ','))
+        v.push_back(std::stod(item));
+      return v;
+    }
+    std::vector<unsigned int> get_unsigneds(ParameterHandler &prm, const std::string &name)
+    {
+      std::vector<unsigned int> v;
+      for (const double d : get_doubles(prm, name))
+        v.push_back(static_cast<unsigned int>(d));
+      return v;
+    }
+
+    // Compiles an expression so that a typo is reported at start-up with its entry name.
+    void check_expression(const int dim, const std::string &text, const unsigned int components,
+                          const std::string &where)
+    {
+      try
+        {
+          if (dim == 1)
+            Expression<1>(text, components);
+          else if (dim == 2)
+            Expression<2>(text, components);
+          else
+            Expression<3>(text, components);
+        }
+      catch (const std::exception &e)
+        {
+          throw InputError(where + ": " + e.what());
+        }
+    }
+
+    // Vector expressions default to "0;0;0"; left at that default they mean zero in any dimension.
+    std::string vector_expression(ParameterHandler &prm, const std::string &name, const int dim)
+    {
+      const std::string text = prm.get(name);
+      if (text != "0;0;0")
+        return text;
+      return dim == 1 ? "0" : dim == 2 ? "0;0" : "0;0;0";
+    }
+
+    std::string resolve(const std::string &path, const std::string &prm_file)
+    {
+      if (path.empty() || path[0] == '/')
+        return path;
+      const auto slash = prm_file.find_last_of('/');
+      return slash == std::string::npos ? path : prm_file.substr(0, slash + 1) + path;
+    }
+
+    // deal.II's messages span several lines; keep the informative one.
+    std::string one_line(const std::string &message)
+    {
+      std::stringstream ss(message);
+      std::string       line, best;
+      while (std::getline(ss, line))
+        {
+          const auto first = line.find_first_not_of(" \t");
+          if (first == std::string::npos)
+            continue;
+          line = line.substr(first);
+          if (line.rfind("Line <", 0) == 0 || line.find("entry") != std::string::npos ||
+              line.find("does not match") != std::string::npos || line.find("match") != std::string::npos)
+            best += (best.empty() ? "" : " ") + line;
+        }
+      return best.empty() ? "malformed parameter file" : best;
+    }
+  } // namespace
+
+  unsigned int Scene::n_steps() const { return std::max(1L, std::lround(end_time / time_step)); }
+
+  void print_parameters(std::ostream &out, const bool markdown)
+  {
+    ParameterHandler prm;
+    declare(prm);
+    prm.print_parameters(out, markdown ? ParameterHandler::OutputStyle::Description :
+                                         ParameterHandler::OutputStyle::PRM);
+  }
+
+  Scene read_scene(const std::string &file)
+  {
+    {
+      std::ifstream in(file);
+      if (!in)
+        throw InputError(file + ": cannot open the parameter file");
+    }
+    ParameterHandler prm;
+    declare(prm);
+    try
+      {
+        prm.parse_input(file, "", false, true);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        std::stringstream ss;
+        e.print_info(ss);
+        throw InputError(file + ": " + one_line(ss.str()));
+      }
+    catch (const std::exception &e)
+      {
+        throw InputError(file + ": " + one_line(e.what()));
+      }
+
+    Scene s;
+    s.parameter_file   = file;
+    s.dimension        = prm.get_integer("dimension");
+    s.mode             = prm.get("mode");
+    s.time_step        = prm.get_double("time step");
+    s.end_time         = prm.get_double("end time");
+    s.output_directory = prm.get("output directory");
+    s.output_every     = prm.get_integer("output every");
+    s.write_nodal_csv  = prm.get_bool("write nodal csv");
+    const int dim      = s.dimension;
+    const auto fail    = [&](const std::string &entry, const std::string &what) {
+      throw InputError(file + ": " + entry + ": " + what);
+    };
+    if (!(s.time_step > 0))
+      fail("time step", "must be positive");
+    if (!(s.end_time > 0))
+      fail("end time", "must be positive");
+
+    for (unsigned int b = 0; b < max_bodies; ++b)
+      {
+        const std::string name = "Body " + std::to_string(b);
+        prm.enter_subsection(name);
+        if (prm.get_bool("enabled"))
+          {
+            BodyScene body;
+            auto     &g         = body.geometry;
+            g.shape             = prm.get("shape");
+            g.file              = resolve(prm.get("file"), file);
+            g.lower             = get_doubles(prm, "lower");
+            g.upper             = get_doubles(prm, "upper");
+            g.subdivisions      = get_unsigneds(prm, "subdivisions");
+            g.center            = get_doubles(prm, "center");
+            g.radius            = prm.get_double("radius");
+            g.shape_refinements = prm.get_integer("shape refinements");
+            g.refinements       = prm.get_integer("refinements");
+            g.translation       = get_doubles(prm, "translation");
+            g.material_id       = prm.get_integer("material id");
+            body.initial_velocity = vector_expression(prm, "initial velocity", dim);
+            if (g.shape == "file" && g.file.empty())
+              fail(name + "/file", "shape = file needs a mesh file");
+            if (g.shape == "file" && !std::ifstream(g.file))
+              fail(name + "/file", "cannot open mesh file '" + g.file + "'");
+            if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
+              for (int k = 0; k < dim; ++k)
+                if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
+                    !(g.upper[k] > g.lower[k]))
+                  fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
+            check_expression(dim, body.initial_velocity, dim, file + ": " + name + "/initial velocity");
+            s.bodies.push_back(body);
+          }
+        prm.leave_subsection();
+      }
+    if (s.bodies.empty())
+      fail("Body 0/enabled", "the scene has no body");
+
+    for (unsigned int m = 0; m < max_materials; ++m)
+      {
+        prm.enter_subsection("Material " + std::to_string(m));
+        Material mat;
+        mat.model          = parse_material_model(prm.get("model"));
+        mat.youngs_modulus = prm.get_double("youngs modulus");
+        mat.poisson_ratio  = prm.get_double("poisson ratio");
+        mat.density        = prm.get_double("density");
+        if (!(mat.youngs_modulus > 0) || !(mat.density > 0) || !(mat.poisson_ratio < 0.5))
+          fail("Material " + std::to_string(m), "needs E > 0, density > 0 and Poisson ratio < 0.5");
+        s.materials.push_back(mat);
+        prm.leave_subsection();
+      }
+
+    prm.enter_subsection("Gravity");
+    s.gravity     = get_doubles(prm, "acceleration");
+    s.gravity.resize(3, 0.0);
+    s.load_factor = prm.get("load factor");
+    check_expression(dim, s.load_factor, 1, file + ": Gravity/load factor");
+    prm.leave_subsection();
+
+    for (unsigned int d = 0; d < max_dirichlet; ++d)
+      {
+        const std::string name = "Dirichlet " + std::to_string(d);
+        prm.enter_subsection(name);
+        if (prm.get_bool("enabled"))
+          {
+            DirichletScene bc;
+            bc.boundary_ids = get_unsigneds(prm, "boundary ids");
+            bc.region       = prm.get("region");
+            bc.displacement = vector_expression(prm, "displacement", dim);
+            if (bc.boundary_ids.empty() == bc.region.empty())
+              fail(name, "give exactly one of 'boundary ids' and 'region'");
+            if (!bc.region.empty())
+              check_expression(dim, bc.region, 1, file + ": " + name + "/region");
+            check_expression(dim, bc.displacement, dim, file + ": " + name + "/displacement");
+            s.dirichlet.push_back(bc);
+          }
+        prm.leave_subsection();
+      }
+
+    for (unsigned int o = 0; o < max_obstacles; ++o)
+      {
+        const std::string name = "Obstacle " + std::to_string(o);
+        prm.enter_subsection(name);
+        ObstacleScene ob;
+        ob.type = prm.get("type");
+        if (ob.type != "none")
+          {
+            ob.file            = resolve(prm.get("file"), file);
+            ob.point           = get_doubles(prm, "point");
+            ob.normal          = get_doubles(prm, "normal");
+            ob.size            = get_doubles(prm, "size");
+            ob.count           = prm.get_integer("count");
+            ob.spike_height    = prm.get_double("spike height");
+            ob.translation     = vector_expression(prm, "translation", dim);
+            ob.rotation_angle  = prm.get("rotation angle");
+            ob.rotation_axis   = get_doubles(prm, "rotation axis");
+            ob.rotation_center = get_doubles(prm, "rotation center");
+            for (auto *v : {&ob.point, &ob.normal, &ob.size, &ob.rotation_axis, &ob.rotation_center})
+              v->resize(3, 0.0);
+            if (ob.type == "file" && !std::ifstream(ob.file))
+              fail(name + "/file", "cannot open obstacle file '" + ob.file + "'");
+            if (dim == 1 && ob.type != "plane")
+              fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
+            check_expression(dim, ob.translation, dim, file + ": " + name + "/translation");
+            check_expression(dim, ob.rotation_angle, 1, file + ": " + name + "/rotation angle");
+            s.obstacles.push_back(ob);
+          }
+        prm.leave_subsection();
+      }
+
+    prm.enter_subsection("Contact");
+    s.contact.enabled              = prm.get_bool("enabled");
+    s.contact.dhat                 = prm.get_double("dhat");
+    const std::string stiffness    = prm.get("barrier stiffness");
+    if (stiffness != "adaptive")
+      {
+        try
+          {
+            s.contact.barrier_stiffness = std::stod(stiffness);
+          }
+        catch (const std::exception &)
+          {
+            s.contact.barrier_stiffness = -1;
+          }
+        if (!(s.contact.barrier_stiffness > 0))
+          fail("Contact/barrier stiffness", "must be 'adaptive' or a positive number");
+      }
+    s.contact.friction_coefficient = prm.get_double("friction coefficient");
+    s.contact.epsilon_v            = prm.get_double("epsilon v");
+    s.contact.friction_iterations  = prm.get_integer("friction iterations");
+    s.contact.self_contact         = prm.get_bool("self contact");
+    if (!(s.contact.dhat > 0))
+      fail("Contact/dhat", "must be positive");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Solver");
+    s.solver.newton_tolerance = prm.get_double("newton tolerance");
+    s.solver.static_tolerance = prm.get_double("static tolerance");
+    s.solver.max_iterations   = prm.get_integer("max iterations");
+    s.solver.threads          = prm.get_integer("threads");
+    prm.leave_subsection();
+    return s;
+  }
+} // namespace ritr

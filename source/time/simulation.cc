@@ -1,0 +1,504 @@
+#include <ritr/common/atomic_file.h>
+#include <ritr/metrics/mesh_metrics.h>
+#include <ritr/output/vtk_files.h>
+#include <ritr/scene/parameters.h>
+#include <ritr/time/simulation.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace ritr
+{
+  namespace
+  {
+    template <int dim>
+    Vec<dim> to_vec(const std::vector<double> &v)
+    {
+      Vec<dim> r;
+      for (int k = 0; k < dim; ++k)
+        r[k] = v[k];
+      return r;
+    }
+
+    std::string numbered(const std::string &stem, const unsigned int n, const std::string &ext)
+    {
+      std::ostringstream s;
+      s << stem << '-' << std::setw(5) << std::setfill('0') << n << ext;
+      return s.str();
+    }
+
+    double seconds_since(const std::chrono::steady_clock::time_point start)
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  } // namespace
+
+  template <int dim>
+  struct Simulation<dim>::Outputs
+  {
+    std::filesystem::path directory;
+    PvdCollection         solution, reference, obstacles;
+    std::ostringstream    log;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+
+    explicit Outputs(const std::filesystem::path &dir)
+      : directory(dir)
+      , solution((dir / "solution.pvd").string())
+      , reference((dir / "reference.pvd").string())
+      , obstacles((dir / "obstacles.pvd").string())
+    {
+      log << "step,time,n_vertices,energy,inner_newton_iterations,outer_iterations,min_distance,"
+             "min_reference_measure,min_deformed_jacobian,wall_seconds\n";
+    }
+  };
+
+  template <int dim>
+  Simulation<dim>::~Simulation() = default;
+
+  template <int dim>
+  Simulation<dim>::Simulation(const Scene &scene)
+    : scene_(scene)
+  {
+    const std::string &file = scene.parameter_file;
+    std::vector<BodyDescription> bodies;
+    for (const auto &b : scene.bodies)
+      bodies.push_back(b.geometry);
+    try
+      {
+        mesh_ = build_mesh<dim>(bodies);
+        bulk_ = std::make_unique<BulkEnergy<dim>>(mesh_, scene.materials);
+      }
+    catch (const InputError &)
+      {
+        throw;
+      }
+    catch (const std::exception &e)
+      {
+        throw InputError(file + ": Body: " + e.what());
+      }
+    u_ = mesh_.reference;
+    x_ = u_;
+    v_ = Eigen::VectorXd::Zero(u_.size());
+    std::vector<Expression<dim>> velocity;
+    for (const auto &b : scene.bodies)
+      velocity.emplace_back(b.initial_velocity, dim);
+    for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
+      v_.template segment<dim>(i * dim) = velocity[mesh_.node_part[i]].vector_value(mesh_.reference_node(i), 0.0);
+    load_factor_.emplace(scene.load_factor, 1);
+
+    setup_obstacles();
+    setup_dirichlet();
+    if (scene.contact.enabled)
+      {
+        ContactSettings settings;
+        settings.dhat                 = scene.contact.dhat;
+        settings.friction_coefficient = scene.contact.friction_coefficient;
+        settings.epsilon_v_times_h    = scene.contact.epsilon_v * scene.time_step;
+        settings.self_contact         = scene.contact.self_contact;
+        contact_ = std::make_unique<ContactPotential<dim>>(mesh_, obstacles_, settings);
+      }
+    potential_ = std::make_unique<IncrementalPotential<dim>>(*bulk_, contact_.get(), u_);
+    check_initial_state();
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_obstacles()
+  {
+    const std::string &file = scene_.parameter_file;
+    for (std::size_t o = 0; o < scene_.obstacles.size(); ++o)
+      {
+        const ObstacleScene &s = scene_.obstacles[o];
+        contact::RigidObstacle<dim> obstacle;
+        try
+          {
+            if (s.type == "plane")
+              obstacle = contact::make_plane<dim>(to_vec<dim>(s.point), to_vec<dim>(s.normal), s.size[0]);
+            else if (s.type == "box" || s.type == "punch")
+              obstacle = contact::make_box<dim>(to_vec<dim>(s.point), to_vec<dim>(s.size));
+            else if (s.type == "spikes")
+              obstacle = contact::make_spikes<dim>(to_vec<dim>(s.point), s.size[0], s.count, s.spike_height);
+            else
+              obstacle = contact::read_obj<dim>(s.file);
+          }
+        catch (const std::exception &e)
+          {
+            throw InputError(file + ": Obstacle " + std::to_string(o) + ": " + e.what());
+          }
+        obstacle.center = to_vec<dim>(s.rotation_center);
+        obstacle.axis   = Eigen::Vector3d(s.rotation_axis[0], s.rotation_axis[1], s.rotation_axis[2]);
+        auto translation = std::make_shared<Expression<dim>>(s.translation, dim);
+        auto angle       = std::make_shared<Expression<dim>>(s.rotation_angle, 1);
+        obstacle.translation = [translation](double t) {
+          return Vec<dim>(translation->vector_value(Vec<dim>::Zero(), t));
+        };
+        obstacle.angle = [angle](double t) { return angle->value(Vec<dim>::Zero(), t); };
+        obstacles_.push_back(std::move(obstacle));
+      }
+    unsigned int n = 0;
+    for (const auto &o : obstacles_)
+      n += o.rest_vertices.size();
+    obstacle_positions_.resize(n * dim);
+    for (unsigned int i = 0, o = 0; o < obstacles_.size(); ++o)
+      for (const auto &p : obstacles_[o].vertices_at(0.0))
+        obstacle_positions_.template segment<dim>(dim * i++) = p;
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_dirichlet()
+  {
+    const std::string &file = scene_.parameter_file;
+    std::vector<int>   condition_of(mesh_.n_nodes(), -1);
+    for (unsigned int d = 0; d < scene_.dirichlet.size(); ++d)
+      {
+        const DirichletScene &bc = scene_.dirichlet[d];
+        std::vector<bool>     selected(mesh_.n_nodes(), false);
+        if (!bc.region.empty())
+          {
+            const Expression<dim> region(bc.region, 1);
+            for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
+              selected[i] = region.value(mesh_.reference_node(i), 0.0) > 0;
+          }
+        else
+          for (unsigned int f = 0; f < mesh_.boundary_facets.size(); ++f)
+            if (std::find(bc.boundary_ids.begin(), bc.boundary_ids.end(), mesh_.boundary_ids[f]) !=
+                bc.boundary_ids.end())
+              for (const unsigned int n : mesh_.boundary_facets[f])
+                selected[n] = true;
+        dirichlet_displacements_.emplace_back(bc.displacement, dim);
+        unsigned int count = 0;
+        for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
+          if (selected[i])
+            {
+              ++count;
+              if (condition_of[i] >= 0)
+                {
+                  // Two conditions on one node must agree at all times we can check cheaply.
+                  for (const double t : {0.0, 0.5 * scene_.end_time, scene_.end_time})
+                    if ((dirichlet_displacements_[condition_of[i]].vector_value(mesh_.reference_node(i), t) -
+                         dirichlet_displacements_[d].vector_value(mesh_.reference_node(i), t))
+                          .norm() > 1e-12)
+                      throw InputError(file + ": Dirichlet " + std::to_string(d) +
+                                       ": contradicts Dirichlet " + std::to_string(condition_of[i]) +
+                                       " on shared nodes");
+                  continue;
+                }
+              condition_of[i] = d;
+              dirichlet_nodes_.emplace_back(i, d);
+            }
+        if (count == 0)
+          throw InputError(file + ": Dirichlet " + std::to_string(d) + ": selects no node");
+      }
+    kinematic_.assign(u_.size() + obstacle_positions_.size(), false);
+    for (const auto &[node, condition] : dirichlet_nodes_)
+      for (int k = 0; k < dim; ++k)
+        kinematic_[node * dim + k] = true;
+    for (Eigen::Index i = u_.size(); i < static_cast<Eigen::Index>(kinematic_.size()); ++i)
+      kinematic_[i] = true;
+    // Dirichlet nodes start at their prescribed position.
+    const Eigen::VectorXd targets = state_targets(0.0);
+    for (const auto &[node, condition] : dirichlet_nodes_)
+      x_.template segment<dim>(node * dim) = targets.template segment<dim>(node * dim);
+  }
+
+  template <int dim>
+  void Simulation<dim>::check_initial_state() const
+  {
+    const std::string &file = scene_.parameter_file;
+    double             smallest = std::numeric_limits<double>::max(), largest = 0;
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      {
+        const double m = std::abs(signed_cell_measure(c));
+        smallest       = std::min(smallest, m);
+        largest        = std::max(largest, m);
+      }
+    if (!(smallest > 1e-12 * largest))
+      throw InputError(file + ": Body: the mesh has degenerate (zero-measure) elements");
+    if (!(min_deformed_jacobian(mesh_, x_, u_) > 0))
+      throw InputError(file + ": Dirichlet: the initial prescribed displacement inverts elements");
+    if (contact_)
+      {
+        const double d = contact_->minimum_distance(state());
+        if (!(d > 0))
+          throw InputError(file + ": the initial configuration intersects (bodies or obstacles overlap or touch)");
+      }
+  }
+
+  template <int dim>
+  Eigen::VectorXd Simulation<dim>::state() const
+  {
+    Eigen::VectorXd z(x_.size() + obstacle_positions_.size());
+    z << x_, obstacle_positions_;
+    return z;
+  }
+
+  template <int dim>
+  Eigen::VectorXd Simulation<dim>::state_targets(const double t) const
+  {
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(u_.size() + obstacle_positions_.size());
+    for (const auto &[node, condition] : dirichlet_nodes_)
+      z.template segment<dim>(node * dim) =
+        mesh_.reference_node(node) + Vec<dim>(dirichlet_displacements_[condition].vector_value(mesh_.reference_node(node), t));
+    unsigned int i = mesh_.n_nodes();
+    for (const auto &o : obstacles_)
+      for (const auto &p : o.vertices_at(t))
+        z.template segment<dim>(dim * i++) = p;
+    return z;
+  }
+
+  template <int dim>
+  double Simulation<dim>::signed_cell_measure(const unsigned int c) const
+  {
+    return simplex_measure<dim, double>(cell_nodes<dim>(u_, mesh_.cells[c]));
+  }
+
+  template <int dim>
+  StepReport Simulation<dim>::advance()
+  {
+    const auto   start   = std::chrono::steady_clock::now();
+    const double h       = scene_.time_step;
+    const double t1      = time_ + h;
+    const bool   dynamic = scene_.dynamic();
+
+    CellEnergyWeights<dim> w;
+    w.inertia         = dynamic ? 1.0 : 0.0;
+    w.potential       = dynamic ? h * h : 1.0;
+    const double load = load_factor_->value(Vec<dim>::Zero(), t1);
+    for (int k = 0; k < dim; ++k)
+      w.gravity[k] = scene_.gravity[k] * load;
+    bulk_->set_weights(w);
+    bulk_->set_predictor(x_ + h * v_);
+
+    Eigen::VectorXd       z       = state();
+    const Eigen::VectorXd z_start = z;
+    const Eigen::VectorXd targets = state_targets(t1);
+
+    if (contact_)
+      {
+        const double diagonal = contact_->bbox_diagonal(z);
+        if (scene_.contact.barrier_stiffness > 0)
+          contact_->set_stiffness(scene_.contact.barrier_stiffness);
+        else
+          {
+            const Eigen::VectorXd masses = bulk_->nodal_masses(u_);
+            const auto stiffness = contact::initial_barrier_stiffness(
+              diagonal, scene_.contact.dhat, masses.mean(), potential_->bulk_gradient(z),
+              contact_->barrier_gradient(z));
+            contact_->set_stiffness(stiffness.kappa);
+            potential_->enable_adaptive_stiffness(stiffness.kappa_max, diagonal);
+          }
+      }
+
+    NewtonSettings settings;
+    settings.max_iterations = scene_.solver.max_iterations;
+    settings.tolerance      = dynamic ? scene_.solver.newton_tolerance * h :
+                                        scene_.solver.static_tolerance * (contact_ ? contact_->bbox_diagonal(z) : 1.0);
+
+    StepReport report;
+    report.step = step_ + 1;
+    report.time = t1;
+    const unsigned int friction_iterations =
+      contact_ && scene_.contact.friction_coefficient > 0 ? scene_.contact.friction_iterations : 1;
+    for (unsigned int f = 0; f < friction_iterations; ++f)
+      {
+        if (contact_)
+          contact_->update_friction(z, z_start);
+        const NewtonResult r = newton_.minimize(*potential_, z, kinematic_, targets, settings);
+        report.newton_iterations += r.iterations;
+        report.line_search_trials += r.line_search_trials;
+        report.energy = r.energy;
+        if (!r.converged)
+          throw ConvergenceError("step " + std::to_string(step_ + 1) + " (t = " + std::to_string(t1) +
+                                 ") did not converge: " + r.failure);
+      }
+
+    const Eigen::VectorXd x_new = z.head(x_.size());
+    v_                  = dynamic ? Eigen::VectorXd((x_new - x_) / h) : Eigen::VectorXd::Zero(x_.size());
+    x_                  = x_new;
+    obstacle_positions_ = z.tail(obstacle_positions_.size());
+    time_               = t1;
+    ++step_;
+
+    report.min_distance          = contact_ ? contact_->minimum_distance(z) : std::numeric_limits<double>::infinity();
+    report.min_reference_measure = std::numeric_limits<double>::max();
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      report.min_reference_measure = std::min(report.min_reference_measure, signed_cell_measure(c));
+    report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x_, u_);
+    if (!(report.min_distance > 0))
+      invariant_violations_.push_back("step " + std::to_string(step_) + ": minimum distance " +
+                                      std::to_string(report.min_distance));
+    if (!(report.min_deformed_jacobian > 0))
+      invariant_violations_.push_back("step " + std::to_string(step_) + ": inverted element (det F = " +
+                                      std::to_string(report.min_deformed_jacobian) + ")");
+    report.wall_seconds = seconds_since(start);
+    history_.push_back(report);
+    return report;
+  }
+
+  template <int dim>
+  Eigen::VectorXd Simulation<dim>::contact_forces() const
+  {
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(x_.size());
+    if (!contact_)
+      return f;
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(x_.size() + obstacle_positions_.size());
+    contact_->add_gradient(state(), g);
+    const double weight = scene_.dynamic() ? scene_.time_step * scene_.time_step : 1.0;
+    return -g.head(x_.size()) / weight;
+  }
+
+  template <int dim>
+  void Simulation<dim>::write_step_output(const unsigned int step)
+  {
+    Outputs   &out = *outputs_;
+    const auto dir = out.directory;
+
+    VtuPiece piece;
+    for (const auto &cell : mesh_.cells)
+      piece.cells.emplace_back(cell.begin(), cell.end());
+    const auto field = [&](const std::string &name, const Eigen::VectorXd &v) {
+      return VtuField{name, 3, pad_to_3d(v, dim)};
+    };
+    piece.point_data = {field("displacement", x_ - u_), field("velocity", v_),
+                        field("reference_position", u_), field("contact_force", contact_forces())};
+    const auto strains = cell_strains(mesh_, x_, u_);
+    const auto quality = cell_qualities(mesh_, u_);
+    VtuField   strain{"strain", 1, Eigen::Map<const Eigen::VectorXd>(strains.data(), strains.size())};
+    VtuField   material{"material_id", 1, Eigen::VectorXd(mesh_.n_cells())};
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      material.values[c] = mesh_.cell_material[c];
+    VtuField element_quality{"element_quality", 1, Eigen::Map<const Eigen::VectorXd>(quality.data(), quality.size())};
+    piece.cell_data = {strain, material, element_quality};
+
+    const auto as_points = [&](const Eigen::VectorXd &p) {
+      const Eigen::VectorXd padded = pad_to_3d(p, dim);
+      return Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+        padded.data(), padded.size() / 3, 3));
+    };
+    piece.points = as_points(x_);
+    write_vtu((dir / numbered("solution", step, ".vtu")).string(), piece);
+    out.solution.add(time_, numbered("solution", step, ".vtu"));
+    piece.points = as_points(u_);
+    write_vtu((dir / numbered("reference", step, ".vtu")).string(), piece);
+    out.reference.add(time_, numbered("reference", step, ".vtu"));
+
+    if (!obstacles_.empty())
+      {
+        VtuPiece     obstacle_piece;
+        obstacle_piece.points = as_points(obstacle_positions_);
+        unsigned int offset   = 0;
+        for (const auto &o : obstacles_)
+          {
+            if constexpr (dim == 1)
+              obstacle_piece.cells.push_back({offset});
+            for (const auto &e : o.edges)
+              obstacle_piece.cells.push_back({offset + e[0], offset + e[1]});
+            for (const auto &f : o.faces)
+              obstacle_piece.cells.push_back({offset + f[0], offset + f[1], offset + f[2]});
+            offset += o.rest_vertices.size();
+          }
+        write_vtu((dir / numbered("obstacles", step, ".vtu")).string(), obstacle_piece);
+        out.obstacles.add(time_, numbered("obstacles", step, ".vtu"));
+      }
+
+    if (scene_.write_nodal_csv)
+      write_file_atomically((dir / numbered("nodes", step, ".csv")).string(), [&](std::ostream &s) {
+        const char *axes = "xyz";
+        s << "id";
+        for (const char *q : {"u", "x", "v"})
+          for (int k = 0; k < dim; ++k)
+            s << ',' << q << '_' << axes[k];
+        s << '\n';
+        for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
+          {
+            s << i;
+            for (const Eigen::VectorXd *q : {&u_, &x_, &v_})
+              for (int k = 0; k < dim; ++k)
+                s << ',' << (*q)[i * dim + k];
+            s << '\n';
+          }
+      });
+  }
+
+  template <int dim>
+  void Simulation<dim>::write_summary(const double total_seconds) const
+  {
+    unsigned int newton = 0, outer = 0, trials = 0;
+    for (const auto &r : history_)
+      {
+        newton += r.newton_iterations;
+        outer += r.outer_iterations;
+        trials += r.line_search_trials;
+      }
+    write_file_atomically((outputs_->directory / "summary.json").string(), [&](std::ostream &s) {
+      s << "{\n  \"scene\": \"" << scene_.parameter_file << "\",\n"
+        << "  \"dimension\": " << dim << ",\n"
+        << "  \"mode\": \"" << scene_.mode << "\",\n"
+        << "  \"adaptivity\": false,\n"
+        << "  \"steps\": " << history_.size() << ",\n"
+        << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
+        << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
+        << "  \"total_wall_seconds\": " << total_seconds << ",\n"
+        << "  \"wall_seconds_per_step\": " << total_seconds / std::max<std::size_t>(1, history_.size()) << ",\n"
+        << "  \"linear_solve_seconds\": " << newton_.seconds_in_linear_solves() << ",\n"
+        << "  \"symbolic_factorizations\": " << newton_.linear_solver().n_symbolic_analyses() << ",\n"
+        << "  \"numeric_factorizations\": " << newton_.linear_solver().n_factorizations() << ",\n"
+        << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
+        << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
+        << "  \"total_newton_iterations\": " << newton << ",\n"
+        << "  \"total_outer_iterations\": " << outer << ",\n"
+        << "  \"total_line_search_trials\": " << trials << ",\n"
+        << "  \"invariant_violations\": [";
+      for (std::size_t i = 0; i < invariant_violations_.size(); ++i)
+        s << (i ? ", " : "") << '"' << invariant_violations_[i] << '"';
+      s << "]\n}\n";
+    });
+  }
+
+  template <int dim>
+  void Simulation<dim>::run()
+  {
+    std::filesystem::create_directories(scene_.output_directory);
+    outputs_ = std::make_unique<Outputs>(scene_.output_directory);
+    write_step_output(0);
+    const unsigned int n_steps = scene_.n_steps();
+    const auto         start   = std::chrono::steady_clock::now();
+    const auto         flush_log = [&] {
+      write_file_atomically((outputs_->directory / "log.csv").string(),
+                            [&](std::ostream &s) { s << outputs_->log.str(); });
+    };
+    try
+      {
+        while (step_ < n_steps)
+          {
+            const StepReport r = advance();
+            outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
+                          << r.newton_iterations << ',' << r.outer_iterations << ',' << r.min_distance << ','
+                          << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.wall_seconds
+                          << '\n';
+            flush_log();
+            if (step_ % scene_.output_every == 0 || step_ == n_steps)
+              write_step_output(step_);
+            const double elapsed = seconds_since(start);
+            std::cout << "step " << r.step << '/' << n_steps << "  t=" << std::setprecision(4) << r.time
+                      << "  newton=" << r.newton_iterations << "  E=" << std::setprecision(6) << r.energy
+                      << "  elapsed=" << std::setprecision(3) << elapsed << "s  eta="
+                      << elapsed / r.step * (n_steps - r.step) << "s" << std::endl;
+          }
+      }
+    catch (const ConvergenceError &)
+      {
+        write_summary(seconds_since(start));
+        throw;
+      }
+    write_summary(seconds_since(start));
+  }
+
+  template class Simulation<1>;
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace ritr
