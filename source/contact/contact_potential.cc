@@ -1,4 +1,5 @@
 #include <ritr/contact/contact_potential.h>
+#include <ritr/contact/intersection.h>
 
 #include <Eigen/Geometry>
 
@@ -133,7 +134,9 @@ namespace ritr
   template <int dim>
   std::vector<contact::Constraint> ContactPotential<dim>::active_constraints(const Eigen::MatrixXd &V) const
   {
-    auto constraints = contact::build_constraints<dim>(surface_, V, rest_positions_, settings_.dhat);
+    auto constraints = candidates_ ?
+                         contact::build_constraints<dim>(surface_, *candidates_, V, rest_positions_, settings_.dhat) :
+                         contact::build_constraints<dim>(surface_, V, rest_positions_, settings_.dhat);
     if (!settings_.self_contact)
       constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
                                        [&](const contact::Constraint &c) {
@@ -214,15 +217,29 @@ namespace ritr
   }
 
   template <int dim>
-  double ContactPotential<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
+  void ContactPotential<dim>::begin_iteration(const Eigen::VectorXd &z)
   {
-    return contact::max_step<dim>(surface_, collision_positions(z), collision_positions(z + dz), 0.1, 0.0);
+    candidates_ = contact::find_candidates<dim>(surface_, collision_positions(z), settings_.dhat);
+  }
+
+  template <int dim>
+  double ContactPotential<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
+  {
+    const Eigen::MatrixXd V0 = collision_positions(z), V1 = collision_positions(z + dz);
+    candidates_ = contact::find_candidates<dim>(surface_, V0, V1, settings_.dhat);
+    return contact::max_step<dim>(surface_, V0, V1, 0.1, 0.0);
   }
 
   template <int dim>
   double ContactPotential<dim>::minimum_distance(const Eigen::VectorXd &z) const
   {
     return contact::minimum_distance<dim>(surface_, collision_positions(z));
+  }
+
+  template <int dim>
+  bool ContactPotential<dim>::has_intersections(const Eigen::VectorXd &z) const
+  {
+    return contact::has_intersections<dim>(surface_, collision_positions(z));
   }
 
   template <int dim>

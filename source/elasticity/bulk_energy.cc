@@ -1,6 +1,8 @@
 #include <ritr/common/psd_projection.h>
 #include <ritr/elasticity/bulk_energy.h>
 
+#include <Eigen/Cholesky>
+
 #include <deal.II/base/quadrature_lib.h>
 
 #include <tbb/blocked_range.h>
@@ -146,13 +148,13 @@ namespace ritr
                             gather<dim>(u, cell, ue);
                             gather<dim>(x_pred_, cell, pe);
                             const auto geo = cell_geometry<dim>(xe, ue);
-                            const auto psi = energy_density_derivatives<dim>(mat, geo.F);
+                            const auto P   = first_piola_stress<dim>(mat, geo.F);
                             for (int a = 0; a <= dim; ++a)
                               for (int k = 0; k < dim; ++k)
                                 {
                                   double d = 0;
                                   for (int j = 0; j < dim; ++j)
-                                    d += psi.grad[k * dim + j] * geo.shape_gradients[a][j];
+                                    d += P[k][j] * geo.shape_gradients[a][j];
                                   d -= mat.density / (dim + 1) * weights_.gravity[k];
                                   d *= weights_.potential * geo.measure;
                                   if (weights_.inertia != 0.0)
@@ -184,26 +186,25 @@ namespace ritr
             gather<dim>(x, mesh_.cells[c], xe);
             gather<dim>(u, mesh_.cells[c], ue);
             const auto geo = cell_geometry<dim>(xe, ue);
-            auto       psi_hessian = energy_density_derivatives<dim>(mat, geo.F).hess.eval();
-            // The map F -> x is linear, so a PSD density Hessian gives a PSD element block.
-            if (project)
+            Eigen::Matrix<double, dim * dim, dim * dim> psi_hessian =
+              energy_density_derivatives<dim>(mat, geo.F).hess;
+            // The map F -> x is linear, so a PSD density Hessian gives a PSD element block;
+            // a successful Cholesky factorization proves it already is and saves the
+            // eigendecomposition.
+            if (project && Eigen::LLT<decltype(psi_hessian)>(psi_hessian).info() != Eigen::Success)
               psi_hessian = project_to_psd(psi_hessian);
-            Local &block = blocks[c];
+            // dF/dx: F_kj = sum_a x_ak dN_a/dX_j.
+            Eigen::Matrix<double, dim * dim, n> dF_dx = Eigen::Matrix<double, dim * dim, n>::Zero();
             for (int a = 0; a <= dim; ++a)
               for (int k = 0; k < dim; ++k)
-                for (int b = 0; b <= dim; ++b)
-                  for (int l = 0; l < dim; ++l)
-                    {
-                      double h = 0;
-                      for (int j = 0; j < dim; ++j)
-                        for (int m = 0; m < dim; ++m)
-                          h += psi_hessian(k * dim + j, l * dim + m) * geo.shape_gradients[a][j] *
-                               geo.shape_gradients[b][m];
-                      h *= weights_.potential * geo.measure;
-                      if (k == l)
-                        h += weights_.inertia * mat.density * geo.measure * mass[a][b];
-                      block(a * dim + k, b * dim + l) = h;
-                    }
+                for (int j = 0; j < dim; ++j)
+                  dF_dx(k * dim + j, a * dim + k) = geo.shape_gradients[a][j];
+            Local &block = blocks[c];
+            block.noalias() = (weights_.potential * geo.measure) * dF_dx.transpose() * psi_hessian * dF_dx;
+            for (int a = 0; a <= dim; ++a)
+              for (int b = 0; b <= dim; ++b)
+                for (int k = 0; k < dim; ++k)
+                  block(a * dim + k, b * dim + k) += weights_.inertia * mat.density * geo.measure * mass[a][b];
           }
       });
     hessian.reserve(hessian.size() + blocks.size() * n * n);

@@ -4,6 +4,8 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 namespace ritr
@@ -32,6 +34,11 @@ namespace ritr
                                std::to_string(n_components));
     auto parser = std::make_unique<Parser>(n_components);
     const std::string variables = dim == 1 ? "x,t" : dim == 2 ? "x,y,t" : "x,y,z,t";
+    // The expression library reports syntax errors on std::cerr before throwing; the
+    // caller prints one line of its own instead.
+    std::stringstream          silenced;
+    std::streambuf *const      previous = std::cerr.rdbuf(silenced.rdbuf());
+    const std::shared_ptr<void> restore(nullptr, [previous](void *) { std::cerr.rdbuf(previous); });
     try
       {
         parser->initialize(variables, text, {{"pi", M_PI}}, true);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 namespace ritr
@@ -154,22 +155,22 @@ namespace ritr
       return slash == std::string::npos ? path : prm_file.substr(0, slash + 1) + path;
     }
 
-    // deal.II's messages span several lines; keep the informative one.
+    // deal.II's parser messages span several lines ("Line <3> of file <f>: The entry value
+    // ... does not match ..."); fold them into "f:3: The entry value ... does not match ...".
     std::string one_line(const std::string &message)
     {
       std::stringstream ss(message);
-      std::string       line, best;
+      std::string       line, folded;
       while (std::getline(ss, line))
         {
           const auto first = line.find_first_not_of(" \t");
-          if (first == std::string::npos)
-            continue;
-          line = line.substr(first);
-          if (line.rfind("Line <", 0) == 0 || line.find("entry") != std::string::npos ||
-              line.find("does not match") != std::string::npos || line.find("match") != std::string::npos)
-            best += (best.empty() ? "" : " ") + line;
+          if (first != std::string::npos)
+            folded += (folded.empty() ? "" : " ") + line.substr(first, line.find_last_not_of(" \t") - first + 1);
         }
-      return best.empty() ? "malformed parameter file" : best;
+      std::smatch match;
+      if (std::regex_match(folded, match, std::regex("Line <([0-9]+)> of file <([^>]*)>: (.*)")))
+        return match[2].str() + ":" + match[1].str() + ": " + match[3].str();
+      return folded.empty() ? "malformed parameter file" : folded;
     }
   } // namespace
 
@@ -200,7 +201,7 @@ namespace ritr
       {
         std::stringstream ss;
         e.print_info(ss);
-        throw InputError(file + ": " + one_line(ss.str()));
+        throw InputError(one_line(ss.str()));
       }
     catch (const std::exception &e)
       {

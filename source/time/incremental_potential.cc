@@ -5,7 +5,10 @@ namespace ritr
   template <int dim>
   void IncrementalPotential<dim>::begin_iteration(const Eigen::VectorXd &z)
   {
-    if (!contact_ || !adaptive_)
+    if (!contact_)
+      return;
+    contact_->begin_iteration(z);
+    if (!adaptive_)
       return;
     const double d = contact_->active_minimum_distance(z);
     contact_->set_stiffness(contact::update_barrier_stiffness(previous_distance_, d, contact_->stiffness(),

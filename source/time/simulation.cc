@@ -223,7 +223,7 @@ namespace ritr
     if (contact_)
       {
         const double d = contact_->minimum_distance(state());
-        if (!(d > 0))
+        if (!(d > 0) || contact_->has_intersections(state()))
           throw InputError(file + ": the initial configuration intersects (bodies or obstacles overlap or touch)");
       }
   }
@@ -279,6 +279,7 @@ namespace ritr
 
     if (contact_)
       {
+        contact_->forget_candidates();
         const double diagonal = contact_->bbox_diagonal(z);
         if (scene_.contact.barrier_stiffness > 0)
           contact_->set_stiffness(scene_.contact.barrier_stiffness);
@@ -306,7 +307,10 @@ namespace ritr
     for (unsigned int f = 0; f < friction_iterations; ++f)
       {
         if (contact_)
-          contact_->update_friction(z, z_start);
+          {
+            contact_->forget_candidates();
+            contact_->update_friction(z, z_start);
+          }
         const NewtonResult r = newton_.minimize(*potential_, z, kinematic_, targets, settings);
         report.newton_iterations += r.iterations;
         report.line_search_trials += r.line_search_trials;
@@ -323,6 +327,8 @@ namespace ritr
     time_               = t1;
     ++step_;
 
+    if (contact_)
+      contact_->forget_candidates();
     report.min_distance          = contact_ ? contact_->minimum_distance(z) : std::numeric_limits<double>::infinity();
     report.min_reference_measure = std::numeric_limits<double>::max();
     for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
@@ -346,6 +352,7 @@ namespace ritr
     if (!contact_)
       return f;
     Eigen::VectorXd g = Eigen::VectorXd::Zero(x_.size() + obstacle_positions_.size());
+    contact_->forget_candidates();
     contact_->add_gradient(state(), g);
     const double weight = scene_.dynamic() ? scene_.time_step * scene_.time_step : 1.0;
     return -g.head(x_.size()) / weight;

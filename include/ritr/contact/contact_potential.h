@@ -13,6 +13,8 @@
 
 #include <Eigen/Sparse>
 
+#include <optional>
+
 namespace ritr
 {
   struct ContactSettings
@@ -50,8 +52,15 @@ namespace ritr
     // Unscaled barrier gradient dB/dz (for the stiffness initialisation).
     Eigen::VectorXd barrier_gradient(const Eigen::VectorXd &z) const;
 
-    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+    // Newton iterations call begin_iteration(z) and then max_step(z, dz): each computes the
+    // broad-phase candidates once (at z, then along the segment z -> z + dz, inflated by
+    // dhat), and every evaluation until the next call reuses them. Evaluations outside
+    // that pattern must call forget_candidates() first.
+    void   begin_iteration(const Eigen::VectorXd &z);
+    void   forget_candidates() { candidates_.reset(); }
+    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz);
     double minimum_distance(const Eigen::VectorXd &z) const;  // over all primitive pairs
+    bool   has_intersections(const Eigen::VectorXd &z) const;  // crossing primitives
     double active_minimum_distance(const Eigen::VectorXd &z) const;  // over pairs within dhat
     double bbox_diagonal(const Eigen::VectorXd &z) const;
 
@@ -77,6 +86,6 @@ namespace ritr
     Eigen::MatrixXd                 friction_start_;
     double                          kappa_ = 0;
     const SimplexMesh<dim>         &mesh_;
-    std::vector<unsigned int>       facet_owner_;  // boundary facet per surface primitive
+    std::optional<std::vector<contact::Candidate>> candidates_;
   };
 } // namespace ritr

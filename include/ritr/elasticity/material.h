@@ -97,4 +97,59 @@ namespace ritr
           }
       }
   }
+
+  // First Piola-Kirchhoff stress P = dPsi/dF on doubles (the gradient fast path; the
+  // finite-difference tests check it against strain_energy_density).
+  template <int dim>
+  SmallMatrix<dim, double> first_piola_stress(const Material &m, const SmallMatrix<dim, double> &F)
+  {
+    const double             mu = m.mu(dim), lambda = m.lambda(dim);
+    SmallMatrix<dim, double> P{};
+    switch (m.model)
+      {
+        case MaterialModel::neo_hookean:
+          {
+            // mu (F - F^-T) + lambda ln(J) F^-T
+            const double J     = determinant<dim, double>(F);
+            const auto   F_inv = inverse<dim, double>(F);
+            for (int i = 0; i < dim; ++i)
+              for (int j = 0; j < dim; ++j)
+                P[i][j] = mu * (F[i][j] - F_inv[j][i]) + lambda * std::log(J) * F_inv[j][i];
+            break;
+          }
+        case MaterialModel::linear:
+          {
+            double trace = 0;
+            for (int i = 0; i < dim; ++i)
+              trace += F[i][i] - 1.0;
+            for (int i = 0; i < dim; ++i)
+              for (int j = 0; j < dim; ++j)
+                P[i][j] = mu * (F[i][j] + F[j][i] - 2.0 * (i == j)) + (i == j ? lambda * trace : 0.0);
+            break;
+          }
+        case MaterialModel::stvk:
+        default:
+          {
+            // F S with S = 2 mu E + lambda tr(E) I.
+            SmallMatrix<dim, double> S{};
+            double                   trace = 0;
+            for (int i = 0; i < dim; ++i)
+              for (int j = 0; j < dim; ++j)
+                {
+                  double c = 0;
+                  for (int k = 0; k < dim; ++k)
+                    c += F[k][i] * F[k][j];
+                  S[i][j] = 0.5 * (c - (i == j ? 1.0 : 0.0));
+                }
+            for (int i = 0; i < dim; ++i)
+              trace += S[i][i];
+            for (int i = 0; i < dim; ++i)
+              for (int j = 0; j < dim; ++j)
+                S[i][j] = 2 * mu * S[i][j] + (i == j ? lambda * trace : 0.0);
+            P = multiply<dim, double>(F, S);
+            break;
+          }
+      }
+    return P;
+  }
 } // namespace ritr
