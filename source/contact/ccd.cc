@@ -69,6 +69,7 @@ namespace ritr::contact
             if (t + (d - g) / lp >= t_max)
               return t_max;
             const double t_next = t + (it == 0 ? d - g : d - 0.5 * g) / lp;
+            // x0 + t p differs from the true position at t by a common translation only.
             const double d_next = std::sqrt(distance_sqr<dim>(kind, x0 + t_next * p));
             // Later steps only guarantee g/2: stop before entering (0, g).
             if (it > 0 && d_next < g)

@@ -10,15 +10,82 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace ritr::contact
 {
-  namespace
+  // Named (not anonymous) so that lambdas in the exported templates may capture these types.
+  namespace constraints_detail
   {
+    // Forward-mode first-order dual number: gradients at O(N) per operation (the second
+    // order type costs O(N^2)), used where no Hessian is needed.
+    template <int N>
+    struct FirstOrderDual
+    {
+      double                      value = 0.0;
+      Eigen::Matrix<double, N, 1> grad  = Eigen::Matrix<double, N, 1>::Zero();
+
+      FirstOrderDual() = default;
+      FirstOrderDual(const double v) : value(v) {}
+      static FirstOrderDual variable(const int i, const double v)
+      {
+        FirstOrderDual d(v);
+        d.grad[i] = 1.0;
+        return d;
+      }
+      FirstOrderDual &operator+=(const FirstOrderDual &b)
+      {
+        value += b.value;
+        grad += b.grad;
+        return *this;
+      }
+    };
+    template <int N>
+    FirstOrderDual<N> make(const double v, const Eigen::Matrix<double, N, 1> &g)
+    {
+      FirstOrderDual<N> r(v);
+      r.grad = g;
+      return r;
+    }
+    template <int N>
+    FirstOrderDual<N> operator+(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
+    {
+      return make<N>(a.value + b.value, a.grad + b.grad);
+    }
+    template <int N>
+    FirstOrderDual<N> operator-(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
+    {
+      return make<N>(a.value - b.value, a.grad - b.grad);
+    }
+    template <int N>
+    FirstOrderDual<N> operator*(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
+    {
+      return make<N>(a.value * b.value, a.value * b.grad + b.value * a.grad);
+    }
+    template <int N>
+    FirstOrderDual<N> operator/(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
+    {
+      const double inv = 1.0 / b.value;
+      return make<N>(a.value * inv, (a.grad - (a.value * inv) * b.grad) * inv);
+    }
+
+    using ritr::value_of;
+    template <int N>
+    double value_of(const FirstOrderDual<N> &a)
+    {
+      return a.value;
+    }
+
     // f(a) for a plain double (value only) or a dual number (chain rule).
     inline double compose(const double, const double f, const double, const double)
     {
       return f;
+    }
+    template <int N>
+    FirstOrderDual<N> compose(const FirstOrderDual<N> &a, const double f, const double df,
+                              const double)
+    {
+      return make<N>(f, df * a.grad);
     }
     template <int N>
     SecondOrderDual<N> compose(const SecondOrderDual<N> &a, const double f, const double df,
@@ -27,60 +94,124 @@ namespace ritr::contact
       return chain(a, f, df, d2f);
     }
 
-    // Unweighted m b(d) on stencil points x (classified from their values).
-    template <int dim, typename S>
-    S local_barrier(const Constraint &c, const KernelStencil<S, dim> &x, const DistanceClass &cls,
-                    const double dhat_sqr)
+    // Independent variable i with value v (a constant for plain doubles).
+    template <typename S>
+    S make_variable(const int i, const double v)
     {
-      const S      d  = typed_distance_sqr<dim, S>(cls, x);
-      const double dv = value_of(d);
-      if (dv >= dhat_sqr)
-        return S(0.0);
-      S b = compose(d, barrier(dv, dhat_sqr), barrier_first_derivative(dv, dhat_sqr),
-                    barrier_second_derivative(dv, dhat_sqr));
+      if constexpr (std::is_same_v<S, double>)
+        return (void)i, v;
+      else
+        return S::variable(i, v);
+    }
+
+    // The vertices a constraint's barrier depends on at the current positions: only the
+    // slots of its classified distance type, unless the edge-edge mollifier is active
+    // (then all four). Derivatives are taken on this reduced stencil, which shrinks the
+    // dual numbers, the PSD projections and the number of Hessian entries.
+    struct LocalView
+    {
+      int                n = 0; // 0: inactive (d >= dhat^2)
+      std::array<int, 4> slots{{0, 1, 2, 3}};
+      DistanceClass      cls; // relative to the reduced stencil
+      bool               mollified = false;
+      double             distance_sqr = 0.0;
+    };
+
+    template <int dim>
+    LocalView local_view(const Constraint &c, const StencilVector<dim> &x, const double dhat_sqr)
+    {
+      LocalView           v;
+      const DistanceClass cls = classify<dim>(c.kind, x);
+      v.distance_sqr = typed_distance_sqr<dim, double>(cls, to_kernel_points<dim>(x));
+      if (!(v.distance_sqr < dhat_sqr))
+        return v;
       if constexpr (dim == 3)
         if (c.kind == ContactKind::edge_edge)
           {
-            const auto ea = kernels::sub<S, 3>(x[1], x[0]);
-            const auto eb = kernels::sub<S, 3>(x[3], x[2]);
-            const auto n  = kernels::cross<S>(ea, eb);
-            const S    cc = kernels::dot<S, 3>(n, n);
-            const double cv = value_of(cc), eps = c.mollifier_threshold;
-            if (cv < eps)
-              b = b * compose(cc, edge_edge_mollifier(cv, eps),
-                              edge_edge_mollifier_first_derivative(cv, eps),
-                              edge_edge_mollifier_second_derivative(cv, eps));
+            const Eigen::Vector3d ea = x.template segment<3>(3) - x.template segment<3>(0);
+            const Eigen::Vector3d eb = x.template segment<3>(9) - x.template segment<3>(6);
+            if (ea.cross(eb).squaredNorm() < c.mollifier_threshold)
+              {
+                v.n         = 4;
+                v.cls       = cls;
+                v.mollified = true;
+                return v;
+              }
           }
+      v.n         = n_slots(cls.type);
+      v.cls.type  = cls.type;
+      v.cls.slots = {{0, 1, 2, 3}}; // the reduced stencil is ordered like the slots
+      for (int j = 0; j < v.n; ++j)
+        v.slots[j] = cls.slots[j];
+      return v;
+    }
+
+    // Unweighted m b(d) on the reduced stencil of v, with scalar type S.
+    template <int dim, typename S>
+    S local_barrier(const Constraint &c, const StencilVector<dim> &x, const LocalView &v,
+                    const double dhat_sqr)
+    {
+      KernelStencil<S, dim> p{};
+      for (int j = 0; j < v.n; ++j)
+        for (int k = 0; k < dim; ++k)
+          p[j][k] = make_variable<S>(j * dim + k, x[v.slots[j] * dim + k]);
+      const S      d  = typed_distance_sqr<dim, S>(v.cls, p);
+      const double dv = value_of(d);
+      S b = compose(d, barrier(dv, dhat_sqr), barrier_first_derivative(dv, dhat_sqr),
+                    barrier_second_derivative(dv, dhat_sqr));
+      if constexpr (dim == 3)
+        if (v.mollified)
+          {
+            const auto   n   = kernels::cross<S>(kernels::sub<S, 3>(p[1], p[0]),
+                                              kernels::sub<S, 3>(p[3], p[2]));
+            const S      cc  = kernels::dot<S, 3>(n, n);
+            const double cv  = value_of(cc), eps = c.mollifier_threshold;
+            b = b * compose(cc, edge_edge_mollifier(cv, eps),
+                            edge_edge_mollifier_first_derivative(cv, eps),
+                            edge_edge_mollifier_second_derivative(cv, eps));
+          }
+      (void)c;
       return b;
     }
 
     template <int dim>
     double local_barrier_value(const Constraint &c, const Eigen::MatrixXd &V, const double dhat_sqr)
     {
-      const StencilVector<dim> x   = gather_stencil<dim>(c, V);
-      const DistanceClass      cls = classify<dim>(c.kind, x);
-      const auto               p   = to_kernel_points<dim>(x);
-      if (typed_distance_sqr<dim, double>(cls, p) <= 0.0)
+      const StencilVector<dim> x = gather_stencil<dim>(c, V);
+      const LocalView          v = local_view<dim>(c, x, dhat_sqr);
+      if (v.n == 0)
+        return 0.0;
+      if (v.distance_sqr <= 0.0)
         return std::numeric_limits<double>::infinity();
-      return local_barrier<dim, double>(c, p, cls, dhat_sqr);
+      return local_barrier<dim, double>(c, x, v, dhat_sqr);
     }
 
-    template <int dim>
-    SecondOrderDual<stencil_dofs<dim>> local_barrier_dual(const Constraint &c,
-                                                          const Eigen::MatrixXd &V,
-                                                          const double dhat_sqr)
+    // Calls f(dual) with the barrier of the reduced stencil evaluated in Dual<v.n * dim>.
+    template <int dim, template <int> class Dual, typename F>
+    void with_local_dual(const Constraint &c, const StencilVector<dim> &x, const LocalView &v,
+                         const double dhat_sqr, F &&f)
     {
-      using Dual                 = SecondOrderDual<stencil_dofs<dim>>;
-      const StencilVector<dim> x = gather_stencil<dim>(c, V);
-      const DistanceClass cls    = classify<dim>(c.kind, x);
-      // Cheap value test first: inactive constraints need no derivatives.
-      if (typed_distance_sqr<dim, double>(cls, to_kernel_points<dim>(x)) >= dhat_sqr)
-        return Dual(0.0);
-      return local_barrier<dim, Dual>(c, to_dual_points<dim>(x), cls, dhat_sqr);
+      switch (v.n)
+        {
+          case 2:
+            f(local_barrier<dim, Dual<2 * dim>>(c, x, v, dhat_sqr));
+            break;
+          case 3:
+            if constexpr (dim >= 2)
+              f(local_barrier<dim, Dual<3 * dim>>(c, x, v, dhat_sqr));
+            break;
+          case 4:
+            if constexpr (dim == 3)
+              f(local_barrier<dim, Dual<4 * dim>>(c, x, v, dhat_sqr));
+            break;
+          default:
+            break;
+        }
     }
 
     constexpr std::size_t grain = 64;
-  } // namespace
+  } // namespace constraints_detail
+  using namespace constraints_detail;
 
   template <int dim>
   StencilVector<dim> gather_stencil(const Constraint &c, const Eigen::MatrixXd &V)
@@ -120,10 +251,9 @@ namespace ritr::contact
                             c.first               = cand.first;
                             c.second              = cand.second;
                             c.n_vertices = stencil_vertices<dim>(surface, cand, c.vertices);
-                            const StencilVector<dim> x   = gather_stencil<dim>(c, V);
-                            const DistanceClass      cls = classify<dim>(c.kind, x);
-                            c.distance_type              = cls.type;
-                            c.distance_sqr = typed_distance_sqr<dim, double>(cls, to_kernel_points<dim>(x));
+                            const StencilVector<dim> x = gather_stencil<dim>(c, V);
+                            c.distance_type            = classify<dim>(c.kind, x).type;
+                            c.distance_sqr             = distance_sqr<dim>(c.kind, x);
                             if (!(c.distance_sqr < dhat_sqr))
                               continue;
                             active[i] = 1;
@@ -167,7 +297,9 @@ namespace ritr::contact
                         const double dhat, const ConstraintWeights &weights)
   {
     const double dhat_sqr = dhat * dhat;
-    return tbb::parallel_reduce(
+    // Deterministic reduction: line searches compare energies, which must not depend on
+    // thread scheduling.
+    return tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::size_t>(0, constraints.size(), grain), 0.0,
       [&](const auto &range, double sum) {
         for (std::size_t i = range.begin(); i != range.end(); ++i)
@@ -186,15 +318,26 @@ namespace ritr::contact
                                    const Eigen::MatrixXd &V, const double dhat,
                                    const ConstraintWeights &weights)
   {
-    constexpr int   N        = stencil_dofs<dim>;
-    const double    dhat_sqr = dhat * dhat;
-    // Local gradients in parallel, then a serial scatter (no write conflicts, no locks).
+    constexpr int N        = stencil_dofs<dim>;
+    const double  dhat_sqr = dhat * dhat;
+    // Local gradients (on the full stencil) in parallel, then a serial scatter: no write
+    // conflicts, no locks, deterministic sums.
     Eigen::MatrixXd local(N, constraints.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, constraints.size(), grain),
                       [&](const auto &range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i)
-                          local.col(i) = weights.weight(constraints[i]) *
-                                         local_barrier_dual<dim>(constraints[i], V, dhat_sqr).grad;
+                          {
+                            const Constraint        &c = constraints[i];
+                            const StencilVector<dim> x = gather_stencil<dim>(c, V);
+                            const LocalView          v = local_view<dim>(c, x, dhat_sqr);
+                            local.col(i).setZero();
+                            const double w = weights.weight(c);
+                            with_local_dual<dim, FirstOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
+                              for (int j = 0; j < v.n; ++j)
+                                local.col(i).template segment<dim>(v.slots[j] * dim) =
+                                  w * b.grad.template segment<dim>(j * dim);
+                            });
+                          }
                       });
     Eigen::VectorXd g = Eigen::VectorXd::Zero(V.rows() * dim);
     for (std::size_t i = 0; i < constraints.size(); ++i)
@@ -211,26 +354,42 @@ namespace ritr::contact
   barrier_hessian(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
                   const double dhat, const ConstraintWeights &weights, const bool project_psd)
   {
-    constexpr int                       N        = stencil_dofs<dim>;
-    const double                        dhat_sqr = dhat * dhat;
-    std::vector<Eigen::Triplet<double>> triplets(constraints.size() * N * N);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, constraints.size(), grain),
-                      [&](const auto &range) {
-                        for (std::size_t i = range.begin(); i != range.end(); ++i)
-                          {
-                            const Constraint  &c = constraints[i];
-                            StencilMatrix<dim> H =
-                              weights.weight(c) * local_barrier_dual<dim>(c, V, dhat_sqr).hess;
-                            if (project_psd && !H.isZero(0.0))
-                              H = project_to_psd(H);
-                            auto *out = &triplets[i * N * N];
-                            for (int a = 0; a < N; ++a)
-                              for (int b = 0; b < N; ++b)
-                                *out++ = Eigen::Triplet<double>(
-                                  c.vertices[a / dim] * dim + a % dim,
-                                  c.vertices[b / dim] * dim + b % dim, H(a, b));
-                          }
-                      });
+    const double dhat_sqr = dhat * dhat;
+    const std::size_t n_c = constraints.size();
+    // Pass 1: which vertices each constraint involves, hence its number of entries.
+    std::vector<LocalView>   views(n_c);
+    std::vector<std::size_t> offset(n_c + 1, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+        views[i] = local_view<dim>(constraints[i], gather_stencil<dim>(constraints[i], V), dhat_sqr);
+    });
+    for (std::size_t i = 0; i < n_c; ++i)
+      offset[i + 1] = offset[i] + static_cast<std::size_t>(views[i].n * dim * views[i].n * dim);
+
+    // Pass 2: local Hessians (projected if asked) written to disjoint ranges.
+    std::vector<Eigen::Triplet<double>> triplets(offset.back());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+        {
+          const Constraint        &c = constraints[i];
+          const LocalView         &v = views[i];
+          const StencilVector<dim> x = gather_stencil<dim>(c, V);
+          const double             w = weights.weight(c);
+          with_local_dual<dim, SecondOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
+            using Matrix = std::decay_t<decltype(b.hess)>;
+            Matrix H     = w * b.hess;
+            if (project_psd)
+              H = project_to_psd(H);
+            auto     *out = &triplets[offset[i]];
+            const int n   = static_cast<int>(H.rows());
+            for (int r = 0; r < n; ++r)
+              for (int q = 0; q < n; ++q)
+                *out++ = Eigen::Triplet<double>(c.vertices[v.slots[r / dim]] * dim + r % dim,
+                                                c.vertices[v.slots[q / dim]] * dim + q % dim,
+                                                H(r, q));
+          });
+        }
+    });
     return triplets;
   }
 
@@ -244,9 +403,17 @@ namespace ritr::contact
                       [&](const auto &range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i)
                           {
-                            const auto b = local_barrier_dual<dim>(constraints[i], V, dhat_sqr);
-                            terms[i].value    = b.value;
-                            terms[i].gradient = b.grad.head(constraints[i].n_vertices * dim);
+                            const Constraint        &c = constraints[i];
+                            const StencilVector<dim> x = gather_stencil<dim>(c, V);
+                            const LocalView          v = local_view<dim>(c, x, dhat_sqr);
+                            BarrierTerm             &t = terms[i];
+                            t.gradient.setZero(c.n_vertices * dim);
+                            with_local_dual<dim, FirstOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
+                              t.value = b.value;
+                              for (int j = 0; j < v.n; ++j)
+                                t.gradient.template segment<dim>(v.slots[j] * dim) =
+                                  b.grad.template segment<dim>(j * dim);
+                            });
                           }
                       });
     return terms;

@@ -1,5 +1,6 @@
 #include <ritr/contact/distance.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace ritr::contact
@@ -13,6 +14,41 @@ namespace ritr::contact
     Vec<dim> point(const StencilVector<dim> &x, const int i)
     {
       return x.template segment<dim>(i * dim);
+    }
+
+    // a b - c d with one rounding (Kahan's algorithm with fused multiply-add).
+    inline double diff_of_products(const double a, const double b, const double c, const double d)
+    {
+      const double w = c * d;
+      const double e = std::fma(-c, d, w);
+      const double f = std::fma(a, b, -w);
+      return f + e;
+    }
+
+    // Cross product accurate to a few ulps of the RESULT even for nearly parallel inputs,
+    // where the naive one loses all digits. The closest-point parameters of nearly parallel
+    // edges / thin triangles are ratios of such small cross products.
+    inline Vec<3> accurate_cross(const Vec<3> &a, const Vec<3> &b)
+    {
+      return {diff_of_products(a[1], b[2], a[2], b[1]), diff_of_products(a[2], b[0], a[0], b[2]),
+              diff_of_products(a[0], b[1], a[1], b[0])};
+    }
+
+    // Barycentric coordinates (u, v) of the projection of t0 + w onto the plane t0 + span(e1,
+    // e2), via the identities (e1 x e2).(w x e2) = |e2|^2 e1.w - (e1.e2) e2.w etc., which avoid
+    // the cancellation of the Gram-determinant form. det = |e1 x e2|^2.
+    inline Eigen::Vector2d plane_parameters(const Vec<3> &e1, const Vec<3> &e2, const Vec<3> &w,
+                                            const Vec<3> &n, const double det)
+    {
+      return {n.dot(accurate_cross(w, e2)) / det, n.dot(accurate_cross(e1, w)) / det};
+    }
+
+    // Parameters (s, t) of the closest points a0 + s ea, b0 + t eb of two lines (w = a0 -
+    // b0, n = ea x eb, det = |n|^2).
+    inline Eigen::Vector2d line_parameters(const Vec<3> &ea, const Vec<3> &eb, const Vec<3> &w,
+                                           const Vec<3> &n, const double det)
+    {
+      return {n.dot(accurate_cross(eb, w)) / det, n.dot(accurate_cross(ea, w)) / det};
     }
 
     DistanceClass point_point(const int a, const int b)
@@ -47,17 +83,16 @@ namespace ritr::contact
     DistanceClass classify_point_triangle(const Vec<3> &p, const Vec<3> &t0, const Vec<3> &t1,
                                           const Vec<3> &t2)
     {
-      const Vec<3> e1 = t1 - t0, e2 = t2 - t0, w = p - t0;
-      const double a = e1.squaredNorm(), b = e1.dot(e2), c = e2.squaredNorm();
-      const double det = e1.cross(e2).squaredNorm();
-      if (det > parallel_threshold * a * c)
+      const Vec<3> e1 = t1 - t0, e2 = t2 - t0;
+      const Vec<3> n   = accurate_cross(e1, e2);
+      const double det = n.squaredNorm();
+      if (det > parallel_threshold * e1.squaredNorm() * e2.squaredNorm())
         {
           // Barycentric coordinates of the projection onto the plane. The squared distance
           // is convex in them, so if the projection is inside it is the minimiser,
           // otherwise the minimum is on the boundary.
-          const double r1 = e1.dot(w), r2 = e2.dot(w);
-          const double u  = (c * r1 - b * r2) / det;
-          const double v  = (a * r2 - b * r1) / det;
+          const Eigen::Vector2d uv = plane_parameters(e1, e2, p - t0, n, det);
+          const double          u = uv[0], v = uv[1];
           if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
             return {DistanceType::point_plane, {{0, 1, 2, 3}}};
         }
@@ -75,14 +110,13 @@ namespace ritr::contact
     DistanceClass classify_edge_edge(const Vec<3> &a0, const Vec<3> &a1, const Vec<3> &b0,
                                      const Vec<3> &b1)
     {
-      const Vec<3> ea = a1 - a0, eb = b1 - b0, w = a0 - b0;
-      const double a = ea.squaredNorm(), b = ea.dot(eb), c = eb.squaredNorm();
-      const double det = ea.cross(eb).squaredNorm(); // = ac - b^2 without cancellation
-      if (det > parallel_threshold * a * c)
+      const Vec<3> ea = a1 - a0, eb = b1 - b0;
+      const Vec<3> n   = accurate_cross(ea, eb);
+      const double det = n.squaredNorm(); // = |ea|^2 |eb|^2 - (ea.eb)^2 without cancellation
+      if (det > parallel_threshold * ea.squaredNorm() * eb.squaredNorm())
         {
-          const double d = ea.dot(w), e = eb.dot(w);
-          const double s = (b * e - c * d) / det;
-          const double t = (a * e - b * d) / det;
+          const Eigen::Vector2d st = line_parameters(ea, eb, a0 - b0, n, det);
+          const double          s = st[0], t = st[1];
           // |a0 + s ea - b0 - t eb|^2 is convex in (s, t): an interior stationary point is
           // the minimiser; otherwise the minimum is on the boundary of the unit square.
           if (s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)
@@ -145,7 +179,19 @@ namespace ritr::contact
   template <int dim>
   double distance_sqr(const ContactKind kind, const StencilVector<dim> &x)
   {
-    return typed_distance_sqr<dim, double>(classify<dim>(kind, x), to_kernel_points<dim>(x));
+    const DistanceClass cls = classify<dim>(kind, x);
+    if constexpr (dim == 3)
+      if (cls.type == DistanceType::line_line)
+        {
+          // The line-line formula divides by |ea x eb|^2, whose direction has relative error
+          // ~eps / sin(angle) for nearly parallel edges; explicit closest points only err
+          // along the flat valley of the distance, so the value stays accurate.
+          const Eigen::Vector2d st = closest_point_parameters<3>(cls, x);
+          const Vec<3> a0 = point<3>(x, 0), b0 = point<3>(x, 2);
+          return (a0 + st[0] * (point<3>(x, 1) - a0) - b0 - st[1] * (point<3>(x, 3) - b0))
+            .squaredNorm();
+        }
+    return typed_distance_sqr<dim, double>(cls, to_kernel_points<dim>(x));
   }
 
   template <int dim>
@@ -180,11 +226,8 @@ namespace ritr::contact
             {
               const Vec<3> t0 = point<3>(x, s[1]);
               const Vec<3> e1 = point<3>(x, s[2]) - t0, e2 = point<3>(x, s[3]) - t0;
-              const Vec<3> w  = point<3>(x, s[0]) - t0;
-              const double a = e1.squaredNorm(), b = e1.dot(e2), c = e2.squaredNorm();
-              const double det = e1.cross(e2).squaredNorm();
-              const double r1 = e1.dot(w), r2 = e2.dot(w);
-              return {(c * r1 - b * r2) / det, (a * r2 - b * r1) / det};
+              const Vec<3> n  = accurate_cross(e1, e2);
+              return plane_parameters(e1, e2, point<3>(x, s[0]) - t0, n, n.squaredNorm());
             }
           break;
         case DistanceType::line_line:
@@ -192,11 +235,8 @@ namespace ritr::contact
             {
               const Vec<3> a0 = point<3>(x, s[0]), b0 = point<3>(x, s[2]);
               const Vec<3> ea = point<3>(x, s[1]) - a0, eb = point<3>(x, s[3]) - b0;
-              const Vec<3> w = a0 - b0;
-              const double a = ea.squaredNorm(), b = ea.dot(eb), c = eb.squaredNorm();
-              const double det = ea.cross(eb).squaredNorm();
-              const double d = ea.dot(w), e = eb.dot(w);
-              return {(b * e - c * d) / det, (a * e - b * d) / det};
+              const Vec<3> n  = accurate_cross(ea, eb);
+              return line_parameters(ea, eb, a0 - b0, n, n.squaredNorm());
             }
           break;
       }

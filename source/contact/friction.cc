@@ -232,7 +232,9 @@ namespace ritr::contact
     else
       {
         check_eps(eps);
-        return tbb::parallel_reduce(
+        // Deterministic reduction: line searches compare energies, which must not depend on
+        // thread scheduling.
+        return tbb::parallel_deterministic_reduce(
           tbb::blocked_range<std::size_t>(0, friction.size(), 256), 0.0,
           [&](const auto &range, double sum) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)

@@ -1,0 +1,533 @@
+// Barrier function, edge-edge mollifier, assembled barrier potential (gradient and Hessian
+// against finite differences in 1D/2D/3D), PSD projection, per-constraint terms and the
+// adaptive stiffness rules.
+#include <ritr/contact/barrier.h>
+#include <ritr/contact/constraints.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+
+#include <random>
+
+using namespace ritr::contact;
+
+namespace
+{
+  template <int dim>
+  using Vec = Eigen::Matrix<double, dim, 1>;
+
+  std::mt19937 &rng()
+  {
+    static std::mt19937 gen(99);
+    return gen;
+  }
+  double uniform(const double a = -1.0, const double b = 1.0)
+  {
+    return std::uniform_real_distribution<double>(a, b)(rng());
+  }
+
+  // ---- Small scenes -----------------------------------------------------------------------
+
+  template <int dim>
+  struct Scene
+  {
+    CollisionSurface<dim> surface;
+    std::vector<Vec<dim>> points;
+
+    int add_vertex(const Vec<dim> &x, const bool obstacle, const int body)
+    {
+      points.push_back(x);
+      surface.is_obstacle.push_back(obstacle);
+      surface.body_id.push_back(body);
+      return surface.n_vertices++;
+    }
+    Eigen::MatrixXd V() const
+    {
+      Eigen::MatrixXd M(points.size(), dim);
+      for (std::size_t i = 0; i < points.size(); ++i)
+        M.row(i) = points[i].transpose();
+      return M;
+    }
+  };
+
+  // 1D: rods [a, b] (two vertices each) and obstacle wall points.
+  void add_rod(Scene<1> &s, const double a, const double b, const int body)
+  {
+    s.add_vertex(Vec<1>(a), false, body);
+    s.add_vertex(Vec<1>(b), false, body);
+  }
+
+  // 2D: jittered regular polygon, counter-clockwise boundary.
+  void add_polygon(Scene<2> &s, const Vec<2> &center, const double radius, const int n,
+                   const double jitter, const bool obstacle, const int body)
+  {
+    const double phase = uniform(0, 6.28);
+    const int    first = s.surface.n_vertices;
+    for (int i = 0; i < n; ++i)
+      {
+        const double a = phase + 2 * M_PI * i / n;
+        const double r = radius * (1 + jitter * uniform());
+        s.add_vertex(center + r * Vec<2>(std::cos(a), std::sin(a)), obstacle, body);
+      }
+    for (int i = 0; i < n; ++i)
+      s.surface.edges.push_back({{first + i, first + (i + 1) % n}});
+  }
+
+  // 3D: jittered, randomly rotated octahedron.
+  void add_octahedron(Scene<3> &s, const Vec<3> &center, const double radius, const double jitter,
+                      const bool obstacle, const int body)
+  {
+    const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(uniform(0, 6.28), Vec<3>(uniform(), uniform(), uniform()).normalized())
+        .toRotationMatrix();
+    const int first = s.surface.n_vertices;
+    for (int k = 0; k < 3; ++k)
+      for (const double sign : {1.0, -1.0})
+        {
+          Vec<3> p = Vec<3>::Zero();
+          p[k]     = sign * radius * (1 + jitter * uniform());
+          s.add_vertex(center + R * p, obstacle, body);
+        }
+    // Vertices: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z.
+    const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                             {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (const auto &f : faces)
+      s.surface.faces.push_back({{first + f[0], first + f[1], first + f[2]}});
+    s.surface.edges = edges_of_faces(s.surface.faces);
+  }
+
+  void add_ground(Scene<3> &s, const double z, const double half)
+  {
+    const int a = s.add_vertex(Vec<3>(-half, -half, z), true, -1);
+    const int b = s.add_vertex(Vec<3>(half, -half, z), true, -1);
+    const int c = s.add_vertex(Vec<3>(half, half, z), true, -1);
+    const int d = s.add_vertex(Vec<3>(-half, half, z), true, -1);
+    s.surface.faces.push_back({{a, b, c}});
+    s.surface.faces.push_back({{a, c, d}});
+    s.surface.edges = edges_of_faces(s.surface.faces);
+  }
+
+  Scene<1> scene_1d()
+  {
+    Scene<1> s;
+    s.add_vertex(Vec<1>(-0.02), true, -1); // wall
+    add_rod(s, 0.05, 1.0, 0);
+    add_rod(s, 1.08, 2.0, 1);
+    add_rod(s, 2.1, 2.5, 2);
+    s.add_vertex(Vec<1>(2.6), true, -1); // wall
+    return s;
+  }
+
+  Scene<2> scene_2d()
+  {
+    Scene<2> s;
+    add_polygon(s, Vec<2>(0, 0), 1.0, 12, 0.05, false, 0);
+    add_polygon(s, Vec<2>(2.1, 0.1), 1.0, 9, 0.05, false, 1);
+    add_polygon(s, Vec<2>(1.0, 1.75), 0.8, 7, 0.05, true, 2);
+    return s;
+  }
+
+  Scene<3> scene_3d()
+  {
+    Scene<3> s;
+    add_octahedron(s, Vec<3>(0, 0, 0), 1.0, 0.1, false, 0);
+    add_octahedron(s, Vec<3>(1.35, 0.2, 0.3), 0.7, 0.1, false, 1);
+    add_ground(s, -0.95, 3.0);
+    return s;
+  }
+
+  ConstraintWeights random_weights(const int n_vertices, const int n_edges)
+  {
+    ConstraintWeights w;
+    for (int i = 0; i < n_vertices; ++i)
+      w.vertex_weights.push_back(uniform(0.5, 2.0));
+    for (int i = 0; i < n_edges; ++i)
+      w.edge_weights.push_back(uniform(0.5, 2.0));
+    return w;
+  }
+
+  Eigen::MatrixXd dense(const std::vector<Eigen::Triplet<double>> &t, const int n)
+  {
+    Eigen::SparseMatrix<double> H(n, n);
+    H.setFromTriplets(t.begin(), t.end());
+    return Eigen::MatrixXd(H);
+  }
+
+  Eigen::MatrixXd reshape(const Eigen::VectorXd &x, const int dim)
+  {
+    Eigen::MatrixXd V(x.size() / dim, dim);
+    for (int i = 0; i < V.rows(); ++i)
+      for (int k = 0; k < dim; ++k)
+        V(i, k) = x[i * dim + k];
+    return V;
+  }
+  Eigen::VectorXd flatten(const Eigen::MatrixXd &V)
+  {
+    Eigen::VectorXd x(V.size());
+    for (int i = 0; i < V.rows(); ++i)
+      for (int k = 0; k < V.cols(); ++k)
+        x[i * V.cols() + k] = V(i, k);
+    return x;
+  }
+
+  // Central-difference checks of the assembled barrier at V (constraint set fixed).
+  template <int dim>
+  void expect_barrier_derivatives_match_fd(const std::vector<Constraint> &cs,
+                                           const Eigen::MatrixXd &V, const double dhat,
+                                           const ConstraintWeights &w, const double tol = 1e-5)
+  {
+    const Eigen::VectorXd x = flatten(V);
+    const int             n = static_cast<int>(x.size());
+    const Eigen::VectorXd g = barrier_gradient<dim>(cs, V, dhat, w);
+    const Eigen::MatrixXd H = dense(barrier_hessian<dim>(cs, V, dhat, w, false), n);
+    Eigen::VectorXd       g_fd(n);
+    Eigen::MatrixXd       H_fd(n, n);
+    const double          h = 1e-7;
+    for (int i = 0; i < n; ++i)
+      {
+        Eigen::VectorXd xp = x, xm = x;
+        xp[i] += h, xm[i] -= h;
+        g_fd[i] = (barrier_energy<dim>(cs, reshape(xp, dim), dhat, w) -
+                   barrier_energy<dim>(cs, reshape(xm, dim), dhat, w)) /
+                  (2 * h);
+        H_fd.col(i) = (barrier_gradient<dim>(cs, reshape(xp, dim), dhat, w) -
+                       barrier_gradient<dim>(cs, reshape(xm, dim), dhat, w)) /
+                      (2 * h);
+      }
+    EXPECT_GT(g.norm(), 0.0);
+    EXPECT_LE((g - g_fd).norm(), tol * g.norm()) << "g    = " << g.transpose() << "\ng_fd = "
+                                                 << g_fd.transpose();
+    EXPECT_LE((H - H_fd).norm(), tol * H.norm());
+    EXPECT_LE((H - H.transpose()).norm(), 1e-12 * H.norm());
+  }
+} // namespace
+
+// ---- Scalar functions ----------------------------------------------------------------------
+
+TEST(BarrierFunction, DerivativesMatchFiniteDifferences)
+{
+  const double dhat_sqr = 0.01;
+  for (const double d : {1e-6, 1e-4, 1e-3, 5e-3, 9e-3, 9.99e-3})
+    {
+      const double h = 1e-6 * d;
+      EXPECT_NEAR(barrier_first_derivative(d, dhat_sqr),
+                  (barrier(d + h, dhat_sqr) - barrier(d - h, dhat_sqr)) / (2 * h),
+                  1e-6 * std::abs(barrier_first_derivative(d, dhat_sqr)) + 1e-12);
+      EXPECT_NEAR(barrier_second_derivative(d, dhat_sqr),
+                  (barrier_first_derivative(d + h, dhat_sqr) -
+                   barrier_first_derivative(d - h, dhat_sqr)) /
+                    (2 * h),
+                  1e-6 * std::abs(barrier_second_derivative(d, dhat_sqr)) + 1e-10);
+      EXPECT_GT(barrier(d, dhat_sqr), 0.0);
+      EXPECT_LT(barrier_first_derivative(d, dhat_sqr), 0.0);
+      EXPECT_GT(barrier_second_derivative(d, dhat_sqr), 0.0);
+    }
+  // C2 at dhat^2, zero beyond, infinite at contact.
+  EXPECT_NEAR(barrier(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-20);
+  EXPECT_NEAR(barrier_first_derivative(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-12);
+  EXPECT_NEAR(barrier_second_derivative(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-7);
+  EXPECT_EQ(barrier(0.02, dhat_sqr), 0.0);
+  EXPECT_EQ(barrier_first_derivative(0.02, dhat_sqr), 0.0);
+  EXPECT_EQ(barrier_second_derivative(0.02, dhat_sqr), 0.0);
+  EXPECT_TRUE(std::isinf(barrier(0.0, dhat_sqr)));
+}
+
+TEST(BarrierFunction, MollifierDerivatives)
+{
+  const double eps = 0.3;
+  for (const double c : {0.0, 0.01, 0.1, 0.2, 0.29})
+    {
+      const double h = 1e-6;
+      EXPECT_NEAR(edge_edge_mollifier_first_derivative(c, eps),
+                  (edge_edge_mollifier(c + h, eps) - edge_edge_mollifier(c - h, eps)) / (2 * h),
+                  1e-7);
+      EXPECT_NEAR(edge_edge_mollifier_second_derivative(c, eps),
+                  (edge_edge_mollifier_first_derivative(c + h, eps) -
+                   edge_edge_mollifier_first_derivative(c - h, eps)) /
+                    (2 * h),
+                  1e-6);
+    }
+  EXPECT_EQ(edge_edge_mollifier(0.0, eps), 0.0);
+  EXPECT_NEAR(edge_edge_mollifier(eps * (1 - 1e-12), eps), 1.0, 1e-12);
+  EXPECT_NEAR(edge_edge_mollifier_first_derivative(eps * (1 - 1e-12), eps), 0.0, 1e-9);
+  EXPECT_EQ(edge_edge_mollifier(2 * eps, eps), 1.0);
+}
+
+// ---- Assembled barrier ---------------------------------------------------------------------
+
+TEST(BarrierAssembly, FiniteDifferences1D)
+{
+  auto                  s    = scene_1d();
+  const double          dhat = 0.12;
+  const Eigen::MatrixXd V    = s.V();
+  const auto            cs   = build_constraints<1>(s.surface, V, V, dhat);
+  ASSERT_GE(cs.size(), 4u);
+  for (const auto &c : cs)
+    {
+      EXPECT_EQ(c.kind, ContactKind::vertex_vertex);
+      EXPECT_FALSE(s.surface.vertex_is_obstacle(c.first)); // body vertex owns the weight
+      EXPECT_EQ(c.weight_index, c.first);
+    }
+  expect_barrier_derivatives_match_fd<1>(cs, V, dhat, random_weights(s.surface.n_vertices, 0));
+}
+
+TEST(BarrierAssembly, FiniteDifferences2D)
+{
+  for (int trial = 0; trial < 5; ++trial)
+    {
+      auto                  s    = scene_2d();
+      const double          dhat = 0.3;
+      const Eigen::MatrixXd V    = s.V();
+      const auto            cs   = build_constraints<2>(s.surface, V, V, dhat);
+      ASSERT_GE(cs.size(), 3u);
+      int n_types[2] = {0, 0};
+      for (const auto &c : cs)
+        {
+          EXPECT_EQ(c.kind, ContactKind::point_edge);
+          EXPECT_LT(c.distance_sqr, dhat * dhat);
+          ++n_types[c.distance_type == DistanceType::point_line ? 1 : 0];
+        }
+      EXPECT_GT(n_types[1], 0);
+      expect_barrier_derivatives_match_fd<2>(cs, V, dhat,
+                                             random_weights(s.surface.n_vertices, 0));
+    }
+}
+
+TEST(BarrierAssembly, FiniteDifferences3D)
+{
+  int n_pt = 0, n_ee = 0, n_types[4] = {0, 0, 0, 0};
+  for (int trial = 0; trial < 5; ++trial)
+    {
+      auto                  s    = scene_3d();
+      const double          dhat = 0.35;
+      const Eigen::MatrixXd V    = s.V();
+      const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
+      ASSERT_GE(cs.size(), 3u);
+      for (const auto &c : cs)
+        {
+          (c.kind == ContactKind::point_triangle ? n_pt : n_ee)++;
+          ++n_types[static_cast<int>(c.distance_type)];
+          if (c.kind == ContactKind::edge_edge)
+            {
+              EXPECT_EQ(c.weight_owner, WeightOwner::edge);
+              EXPECT_GT(c.mollifier_threshold, 0.0);
+            }
+        }
+      expect_barrier_derivatives_match_fd<3>(
+        cs, V, dhat,
+        random_weights(s.surface.n_vertices, static_cast<int>(s.surface.edges.size())));
+    }
+  EXPECT_GT(n_pt, 0);
+  EXPECT_GT(n_ee, 0);
+  for (int t = 0; t < 4; ++t)
+    EXPECT_GT(n_types[t], 0) << "distance type " << t << " never exercised";
+}
+
+TEST(BarrierAssembly, MollifiedNearlyParallelEdges)
+{
+  // Two nearly parallel edges close to each other: c = |ea x eb|^2 < eps_x, so the
+  // mollifier is active; m b must still match finite differences.
+  for (const double angle : {1e-2, 1e-3, 3e-3})
+    {
+      Scene<3> s;
+      const int a0 = s.add_vertex(Vec<3>(-1, 0, 0.05), false, 0);
+      const int a1 = s.add_vertex(Vec<3>(1, 0, 0.05), false, 0);
+      const int b0 = s.add_vertex(Vec<3>(-0.8, -angle, 0), false, 1);
+      const int b1 = s.add_vertex(Vec<3>(1.2, angle, 0), false, 1);
+      s.surface.edges = {{{a0, a1}}, {{b0, b1}}};
+      const Eigen::MatrixXd V    = s.V();
+      const double          dhat = 0.1;
+      const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
+      ASSERT_EQ(cs.size(), 1u);
+      const auto &c = cs[0];
+      ASSERT_EQ(c.kind, ContactKind::edge_edge);
+      const Vec<3> ea = V.row(a1) - V.row(a0), eb = V.row(b1) - V.row(b0);
+      EXPECT_LT(ea.cross(eb).squaredNorm(), c.mollifier_threshold);
+      EXPECT_NEAR(c.mollifier_threshold, 1e-3 * ea.squaredNorm() * eb.squaredNorm(), 1e-15);
+      // Energy is m b with m < 1.
+      const double m = edge_edge_mollifier(ea.cross(eb).squaredNorm(), c.mollifier_threshold);
+      EXPECT_LT(m, 1.0);
+      EXPECT_NEAR(barrier_energy<3>(cs, V, dhat, {}),
+                  m * barrier(constraint_distance_sqr<3>(c, V), dhat * dhat), 1e-14);
+      expect_barrier_derivatives_match_fd<3>(cs, V, dhat, {}, 2e-5);
+    }
+}
+
+TEST(BarrierAssembly, ExactlyParallelEdgesAreSwitchedOff)
+{
+  // Exactly parallel: m = 0 and grad m = 0, so energy and gradient vanish; the Hessian is
+  // b * hess(m), which must match finite differences of the gradient.
+  Scene<3> s;
+  const int a0 = s.add_vertex(Vec<3>(-1, 0, 0.05), false, 0);
+  const int a1 = s.add_vertex(Vec<3>(1, 0, 0.05), false, 0);
+  const int b0 = s.add_vertex(Vec<3>(-0.8, 0, 0), false, 1);
+  const int b1 = s.add_vertex(Vec<3>(1.2, 0, 0), false, 1);
+  s.surface.edges = {{{a0, a1}}, {{b0, b1}}};
+  const Eigen::MatrixXd V    = s.V();
+  const double          dhat = 0.1;
+  const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
+  ASSERT_EQ(cs.size(), 1u);
+  EXPECT_EQ(barrier_energy<3>(cs, V, dhat, {}), 0.0);
+  EXPECT_EQ(barrier_gradient<3>(cs, V, dhat, {}).norm(), 0.0);
+  const Eigen::MatrixXd H = dense(barrier_hessian<3>(cs, V, dhat, {}, false), 12);
+  EXPECT_GT(H.norm(), 0.0);
+  Eigen::MatrixXd H_fd(12, 12);
+  const double    h = 1e-8;
+  for (int i = 0; i < 12; ++i)
+    {
+      Eigen::MatrixXd Vp = V, Vm = V;
+      Vp(i / 3, i % 3) += h, Vm(i / 3, i % 3) -= h;
+      H_fd.col(i) = (barrier_gradient<3>(cs, Vp, dhat, {}) - barrier_gradient<3>(cs, Vm, dhat, {})) /
+                    (2 * h);
+    }
+  EXPECT_LE((H - H_fd).norm(), 1e-5 * H.norm());
+}
+
+TEST(BarrierAssembly, InactiveAndIntersectingConstraints)
+{
+  Scene<2> s;
+  const int p  = s.add_vertex(Vec<2>(0, 0.05), false, 0);
+  const int e0 = s.add_vertex(Vec<2>(-1, 0), false, 1);
+  const int e1 = s.add_vertex(Vec<2>(1, 0), false, 1);
+  s.surface.edges = {{{e0, e1}}};
+  Eigen::MatrixXd V  = s.V();
+  const auto      cs = build_constraints<2>(s.surface, V, V, 0.1);
+  ASSERT_EQ(cs.size(), 1u);
+  EXPECT_EQ(cs[0].first, p);
+  // Moved out of range: zero contribution, zero derivatives.
+  V(p, 1) = 0.5;
+  EXPECT_EQ(barrier_energy<2>(cs, V, 0.1, {}), 0.0);
+  EXPECT_EQ(barrier_gradient<2>(cs, V, 0.1, {}).norm(), 0.0);
+  // Touching: infinite energy.
+  V(p, 1) = 0.0;
+  EXPECT_TRUE(std::isinf(barrier_energy<2>(cs, V, 0.1, {})));
+}
+
+TEST(BarrierAssembly, ProjectedHessianIsPositiveSemiDefinite)
+{
+  bool saw_indefinite = false;
+  for (int trial = 0; trial < 4; ++trial)
+    {
+      {
+        auto                  s    = scene_2d();
+        const Eigen::MatrixXd V    = s.V();
+        const double          dhat = 0.3;
+        const auto            cs   = build_constraints<2>(s.surface, V, V, dhat);
+        const auto            w    = random_weights(s.surface.n_vertices, 0);
+        const int             n    = 2 * s.surface.n_vertices;
+        const Eigen::MatrixXd Hp   = dense(barrier_hessian<2>(cs, V, dhat, w, true), n);
+        const Eigen::MatrixXd H    = dense(barrier_hessian<2>(cs, V, dhat, w, false), n);
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hp), eig_raw(H);
+        EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().cwiseAbs().maxCoeff());
+        saw_indefinite |= eig_raw.eigenvalues().minCoeff() < -1e-8 * H.norm();
+      }
+      {
+        auto                  s    = scene_3d();
+        const Eigen::MatrixXd V    = s.V();
+        const double          dhat = 0.35;
+        const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
+        const auto w = random_weights(s.surface.n_vertices, static_cast<int>(s.surface.edges.size()));
+        const int  n = 3 * s.surface.n_vertices;
+        const Eigen::MatrixXd Hp = dense(barrier_hessian<3>(cs, V, dhat, w, true), n);
+        const Eigen::MatrixXd H  = dense(barrier_hessian<3>(cs, V, dhat, w, false), n);
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hp), eig_raw(H);
+        EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().cwiseAbs().maxCoeff());
+        saw_indefinite |= eig_raw.eigenvalues().minCoeff() < -1e-8 * H.norm();
+      }
+    }
+  // The test is only meaningful if projection had something to do.
+  EXPECT_TRUE(saw_indefinite);
+}
+
+TEST(BarrierAssembly, UnweightedTermsReassembleEnergyAndGradient)
+{
+  auto                  s    = scene_3d();
+  const Eigen::MatrixXd V    = s.V();
+  const double          dhat = 0.35;
+  const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
+  const auto w = random_weights(s.surface.n_vertices, static_cast<int>(s.surface.edges.size()));
+  const auto terms = unweighted_barrier_terms<3>(cs, V, dhat);
+  ASSERT_EQ(terms.size(), cs.size());
+  double          E = 0.0;
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(V.size());
+  for (std::size_t k = 0; k < cs.size(); ++k)
+    {
+      const double wk = cs[k].weight_owner == WeightOwner::vertex ?
+                          w.vertex_weights[cs[k].weight_index] :
+                          w.edge_weights[cs[k].weight_index];
+      EXPECT_EQ(wk, w.weight(cs[k]));
+      if (cs[k].weight_owner == WeightOwner::vertex)
+        EXPECT_EQ(cs[k].weight_index, cs[k].first); // the point vertex
+      else
+        EXPECT_EQ(cs[k].weight_index, cs[k].first); // the first edge
+      E += wk * terms[k].value;
+      ASSERT_EQ(terms[k].gradient.size(), cs[k].n_vertices * 3);
+      for (int a = 0; a < cs[k].n_vertices; ++a)
+        g.segment<3>(3 * cs[k].vertices[a]) += wk * terms[k].gradient.segment<3>(3 * a);
+    }
+  EXPECT_NEAR(E, barrier_energy<3>(cs, V, dhat, w), 1e-12 * std::abs(E));
+  EXPECT_LE((g - barrier_gradient<3>(cs, V, dhat, w)).norm(), 1e-12 * g.norm());
+}
+
+TEST(BarrierAssembly, ObstacleObstaclePairsAreNeverConstraints)
+{
+  Scene<3> s;
+  add_ground(s, 0.0, 1.0);
+  // A second obstacle quad just above the first one.
+  const int a = s.add_vertex(Vec<3>(-1, -1, 0.01), true, -1);
+  const int b = s.add_vertex(Vec<3>(1, -1, 0.01), true, -1);
+  const int c = s.add_vertex(Vec<3>(1, 1, 0.01), true, -1);
+  s.surface.faces.push_back({{a, b, c}});
+  s.surface.edges = edges_of_faces(s.surface.faces);
+  const Eigen::MatrixXd V = s.V();
+  EXPECT_TRUE(build_constraints<3>(s.surface, V, V, 0.1).empty());
+  EXPECT_TRUE(std::isinf(minimum_distance<3>(s.surface, V)));
+}
+
+// ---- Adaptive stiffness --------------------------------------------------------------------
+
+TEST(BarrierStiffness, InitialStiffness)
+{
+  const double bbox = 2.0, dhat = 1e-3, mass = 0.5;
+  const double d_ref = 1e-16 * bbox * bbox;
+  const double kmin  = 1e11 * mass / (4 * d_ref * barrier_second_derivative(d_ref, dhat * dhat));
+
+  // No barrier gradient: kappa_min.
+  const Eigen::VectorXd gE = Eigen::VectorXd::LinSpaced(6, -1, 1);
+  auto s = initial_barrier_stiffness(bbox, dhat, mass, gE, Eigen::VectorXd::Zero(6));
+  EXPECT_DOUBLE_EQ(s.kappa_min, kmin);
+  EXPECT_DOUBLE_EQ(s.kappa_max, 100 * kmin);
+  EXPECT_DOUBLE_EQ(s.kappa, kmin);
+
+  // Barrier gradient opposing the energy gradient: kappa minimises |gE + kappa gB|.
+  const Eigen::VectorXd gB = -gE / (10 * kmin);
+  s = initial_barrier_stiffness(bbox, dhat, mass, gE, gB);
+  EXPECT_NEAR(s.kappa, 10 * kmin, 1e-9 * kmin);
+  EXPECT_LE((gE + s.kappa * gB).norm(), 1e-9 * gE.norm());
+
+  // Clamped to [kappa_min, kappa_max].
+  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(bbox, dhat, mass, gE, -gE / (1e3 * kmin)).kappa,
+                   100 * kmin);
+  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(bbox, dhat, mass, gE, gE).kappa, kmin);
+}
+
+TEST(BarrierStiffness, UpdateDoublesOnlyWhenSqueezed)
+{
+  const double bbox = 1.0, eps = 1e-9 * bbox;
+  EXPECT_DOUBLE_EQ(update_barrier_stiffness(0.5 * eps, 0.25 * eps, 10, 100, bbox), 20);
+  EXPECT_DOUBLE_EQ(update_barrier_stiffness(0.5 * eps, 0.25 * eps, 80, 100, bbox), 100);
+  EXPECT_DOUBLE_EQ(update_barrier_stiffness(0.25 * eps, 0.5 * eps, 10, 100, bbox), 10);
+  EXPECT_DOUBLE_EQ(update_barrier_stiffness(2 * eps, 0.5 * eps, 10, 100, bbox), 10);
+  EXPECT_DOUBLE_EQ(update_barrier_stiffness(0.5, 0.25, 10, 100, bbox), 10);
+}
+
+TEST(BarrierStiffness, BboxDiagonal)
+{
+  Eigen::MatrixXd V(3, 2);
+  V << 0, 0, 3, 1, 1, 4;
+  EXPECT_DOUBLE_EQ(bbox_diagonal(V), 5.0);
+  EXPECT_EQ(bbox_diagonal(Eigen::MatrixXd(0, 3)), 0.0);
+}
