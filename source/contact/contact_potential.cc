@@ -1,6 +1,8 @@
 #include <ritr/contact/contact_potential.h>
 #include <ritr/contact/intersection.h>
 
+#include <ritr/common/second_order_dual.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -21,6 +23,34 @@ namespace ritr
         return (p[1] - p[0]).norm();
       else
         return 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    }
+
+    // Measure of a body boundary facet and its derivatives w.r.t. the facet's reference node
+    // positions (variables: node a component k at a * dim + k).
+    template <int dim>
+    SecondOrderDual<dim * dim> facet_measure(const std::array<unsigned int, dim> &facet, const Eigen::VectorXd &u)
+    {
+      using Dual = SecondOrderDual<dim * dim>;
+      std::array<std::array<Dual, dim>, dim> p;
+      for (int a = 0; a < dim; ++a)
+        for (int k = 0; k < dim; ++k)
+          p[a][k] = Dual::variable(a * dim + k, u[facet[a] * dim + k]);
+      if constexpr (dim == 1)
+        return Dual(1.0);
+      else if constexpr (dim == 2)
+        return sqrt(square(p[1][0] - p[0][0]) + square(p[1][1] - p[0][1]));
+      else
+        {
+          std::array<Dual, 3> e1, e2;
+          for (int k = 0; k < 3; ++k)
+            {
+              e1[k] = p[1][k] - p[0][k];
+              e2[k] = p[2][k] - p[0][k];
+            }
+          const Dual n0 = e1[1] * e2[2] - e1[2] * e2[1], n1 = e1[2] * e2[0] - e1[0] * e2[2],
+                     n2 = e1[0] * e2[1] - e1[1] * e2[0];
+          return 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+        }
     }
   } // namespace
 
@@ -77,6 +107,28 @@ namespace ritr
       }
     surface_.check();
 
+    // Which body facets make up each weight (obstacle weights do not depend on u).
+    vertex_sources_.resize(surface_.n_vertices);
+    edge_sources_.resize(surface_.edges.size());
+    if constexpr (dim > 1)
+      {
+        std::map<std::array<int, 2>, int> edge_index;
+        for (std::size_t i = 0; i < surface_.edges.size(); ++i)
+          edge_index[{std::min(surface_.edges[i][0], surface_.edges[i][1]),
+                      std::max(surface_.edges[i][0], surface_.edges[i][1])}] = i;
+        for (unsigned int f = 0; f < mesh.boundary_facets.size(); ++f)
+          for (int a = 0; a < dim; ++a)
+            {
+              const int cv = node_to_collision[mesh.boundary_facets[f][a]];
+              vertex_sources_[cv].emplace_back(f, 1.0 / dim);
+              if constexpr (dim == 3)
+                {
+                  const int next = node_to_collision[mesh.boundary_facets[f][(a + 1) % 3]];
+                  edge_sources_[edge_index.at({std::min(cv, next), std::max(cv, next)})].emplace_back(f, 1.0 / 3);
+                }
+            }
+      }
+
     rest_positions_.resize(surface_.n_vertices, dim);
     for (std::size_t o = 0; o < obstacles.size(); ++o)
       for (std::size_t v = 0; v < obstacles[o].rest_vertices.size(); ++v)
@@ -87,6 +139,7 @@ namespace ritr
   template <int dim>
   void ContactPotential<dim>::set_reference(const Eigen::VectorXd &u)
   {
+    reference_ = u;
     for (int cv = 0; cv < surface_.n_vertices; ++cv)
       if (!surface_.is_obstacle[cv])
         rest_positions_.row(cv) = u.template segment<dim>(state_vertex_[cv] * dim).transpose();
@@ -119,6 +172,15 @@ namespace ritr
                 weights_.edge_weights[edge_index.at({std::min(f[a], b), std::max(f[a], b)})] += m / 3;
               }
           }
+      }
+    // Lagged friction forces scale with their (now changed) weights.
+    for (std::size_t j = 0; j < friction_.size(); ++j)
+      {
+        double w = 0;
+        for (const auto &[facet, share] : friction_sources_[j])
+          w += share * facet_measure<dim>(mesh_.boundary_facets[facet], u).value;
+        if (!friction_sources_[j].empty())
+          friction_[j].normal_force = friction_unit_force_[j] * w;
       }
   }
 
@@ -175,8 +237,80 @@ namespace ritr
     if (settings_.friction_coefficient <= 0 || dim == 1)
       return;
     const Eigen::MatrixXd V = collision_positions(z_lagged);
-    friction_ = contact::build_friction_constraints<dim>(active_constraints(V), V, settings_.dhat, kappa_,
-                                                         weights_, settings_.friction_coefficient);
+    friction_sources_.clear();
+    friction_unit_force_.clear();
+    // One constraint at a time, so that each friction term keeps its weight's sources.
+    for (const auto &c : active_constraints(V))
+      for (const auto &f :
+           contact::build_friction_constraints<dim>({c}, V, settings_.dhat, kappa_, weights_, settings_.friction_coefficient))
+        {
+          friction_.push_back(f);
+          friction_sources_.push_back(weight_sources(c));
+          friction_unit_force_.push_back(f.normal_force / weights_.weight(c));
+        }
+  }
+
+  template <int dim>
+  const typename ContactPotential<dim>::WeightSources &
+  ContactPotential<dim>::weight_sources(const contact::Constraint &c) const
+  {
+    return c.weight_owner == contact::WeightOwner::vertex ? vertex_sources_[c.weight_index] : edge_sources_[c.weight_index];
+  }
+
+  template <int dim>
+  void ContactPotential<dim>::reference_derivatives(const Eigen::VectorXd &z, ReferenceDerivatives &out) const
+  {
+    const Eigen::MatrixXd V = collision_positions(z);
+    out.gu                  = Eigen::VectorXd::Zero(mesh_.n_nodes() * dim);
+    out.huu.clear();
+    out.hxu.clear();
+
+    // Every contact term is w(u) e(x) with w a sum of shares of facet measures, so its
+    // u-derivatives are e dm/du and its mixed derivatives de/dx dm/du^T.
+    const auto add_term = [&](const WeightSources &sources, const double energy, const auto &stencil,
+                              const auto &stencil_gradient) {
+      for (const auto &[facet, share] : sources)
+        {
+          const auto  m     = facet_measure<dim>(mesh_.boundary_facets[facet], reference_);
+          const auto &nodes = mesh_.boundary_facets[facet];
+          for (int i = 0; i < dim * dim; ++i)
+            {
+              const unsigned int ui = nodes[i / dim] * dim + i % dim;
+              out.gu[ui] += share * energy * m.grad[i];
+              for (int j = 0; j < dim * dim; ++j)
+                out.huu.emplace_back(ui, nodes[j / dim] * dim + j % dim, share * energy * m.hess(i, j));
+              for (std::size_t s = 0; s < stencil.size(); ++s)
+                for (int k = 0; k < dim; ++k)
+                  out.hxu.emplace_back(state_vertex_[stencil[s]] * dim + k, ui,
+                                       share * stencil_gradient[s * dim + k] * m.grad[i]);
+            }
+        }
+    };
+
+    const auto constraints = active_constraints(V);
+    const auto terms       = contact::unweighted_barrier_terms<dim>(constraints, V, settings_.dhat);
+    for (std::size_t k = 0; k < constraints.size(); ++k)
+      {
+        const std::vector<int> stencil(constraints[k].vertices.begin(),
+                                       constraints[k].vertices.begin() + constraints[k].n_vertices);
+        const Eigen::VectorXd  gradient = kappa_ * terms[k].gradient;
+        add_term(weight_sources(constraints[k]), kappa_ * terms[k].value, stencil, gradient);
+      }
+    // Friction: D = sum_j w_j(u) Dhat_j(x) with the lagged normal force per unit weight.
+    for (std::size_t j = 0; j < friction_.size(); ++j)
+      {
+        auto unit         = friction_[j];
+        unit.normal_force = friction_unit_force_[j];
+        const std::vector<contact::FrictionConstraint<dim>> one{unit};
+        const double energy = contact::friction_energy<dim>(one, V, friction_start_, settings_.epsilon_v_times_h);
+        const Eigen::VectorXd full =
+          contact::friction_gradient<dim>(one, V, friction_start_, settings_.epsilon_v_times_h);
+        std::vector<int> stencil(unit.vertices.begin(), unit.vertices.begin() + unit.n_vertices);
+        Eigen::VectorXd  gradient(stencil.size() * dim);
+        for (std::size_t s = 0; s < stencil.size(); ++s)
+          gradient.segment<dim>(s * dim) = full.segment<dim>(stencil[s] * dim);
+        add_term(friction_sources_[j], energy, stencil, gradient);
+      }
   }
 
   template <int dim>

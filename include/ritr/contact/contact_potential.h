@@ -44,7 +44,6 @@ namespace ritr
 
     // Lagged friction: normal forces and tangents from z_lagged, slip measured from z_start.
     void update_friction(const Eigen::VectorXd &z_lagged, const Eigen::VectorXd &z_start);
-    void clear_friction() { friction_.clear(); }
 
     double value(const Eigen::VectorXd &z) const;  // kappa B + D, +inf on contact
     void   add_gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) const;
@@ -64,6 +63,16 @@ namespace ritr
     double active_minimum_distance(const Eigen::VectorXd &z) const;  // over pairs within dhat
     double bbox_diagonal(const Eigen::VectorXd &z) const;
 
+    // Derivatives w.r.t. the body's reference positions u (through the barrier and friction
+    // weights, i.e. the reference boundary measures) at state z: gradient g_u (size
+    // n_nodes * dim), Hessian H_uu and mixed Hessian H_xu (rows: state z, columns: u).
+    struct ReferenceDerivatives
+    {
+      Eigen::VectorXd                      gu;
+      std::vector<Eigen::Triplet<double>> huu, hxu;
+    };
+    void reference_derivatives(const Eigen::VectorXd &z, ReferenceDerivatives &out) const;
+
     unsigned int n_collision_vertices() const { return surface_.n_vertices; }
     unsigned int n_state_vertices() const { return n_state_vertices_; }
     const contact::CollisionSurface<dim> &surface() const { return surface_; }
@@ -81,11 +90,21 @@ namespace ritr
     std::vector<int>                state_vertex_;  // collision vertex -> state vertex
     unsigned int                    n_state_vertices_ = 0;
     Eigen::MatrixXd                 rest_positions_;
+    Eigen::VectorXd                 reference_;  // body reference positions u
     contact::ConstraintWeights      weights_;
     std::vector<contact::FrictionConstraint<dim>> friction_;
     Eigen::MatrixXd                 friction_start_;
     double                          kappa_ = 0;
     const SimplexMesh<dim>         &mesh_;
     std::optional<std::vector<contact::Candidate>> candidates_;
+
+    // Body boundary facets (indices into mesh.boundary_facets) whose measure makes up a
+    // weight, each with its share (1/dim of a facet per vertex, 1/3 of a face per edge).
+    using WeightSources = std::vector<std::pair<unsigned int, double>>;
+    const WeightSources &weight_sources(const contact::Constraint &c) const;
+    std::vector<WeightSources> vertex_sources_, edge_sources_;
+    // Per friction constraint: the weight sources and the normal force per unit weight.
+    std::vector<WeightSources> friction_sources_;
+    std::vector<double>        friction_unit_force_;
   };
 } // namespace ritr
