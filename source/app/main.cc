@@ -16,7 +16,6 @@ namespace
   {
     out << "usage: ritr SCENE.prm          run a scene (outputs go to its 'output directory')\n"
            "       ritr --print-parameters  every parameter with its documentation and default\n"
-           "       ritr --print-parameters-markdown\n"
            "       ritr --help\n"
            "exit codes: 0 done, 2 bad input, 3 a step did not converge\n";
   }
@@ -47,9 +46,9 @@ int main(int argc, char **argv)
       print_usage(std::cout);
       return 0;
     }
-  if (argument == "--print-parameters" || argument == "--print-parameters-markdown")
+  if (argument == "--print-parameters")
     {
-      ritr::print_parameters(std::cout, argument == "--print-parameters-markdown");
+      ritr::print_parameters(std::cout);
       return 0;
     }
   try

@@ -174,17 +174,22 @@ namespace ritr
   {
     constexpr int n = dim * (dim + 1);
     using Local     = Eigen::Matrix<double, n, n>;
-    std::vector<Local> blocks(mesh_.n_cells());
-    const auto        &mass = unit_mass_coefficients<dim>();
+    const auto &mass = unit_mass_coefficients<dim>();
+    // Every cell writes its own n*n slice of the triplet list, so the scatter runs in
+    // parallel with the element computations.
+    const std::size_t offset = hessian.size();
+    hessian.resize(offset + static_cast<std::size_t>(mesh_.n_cells()) * n * n);
     tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), grain),
       [&](const tbb::blocked_range<std::size_t> &range) {
         CellNodes<dim, double> xe, ue;
+        Local                  block;
         for (std::size_t c = range.begin(); c != range.end(); ++c)
           {
-            const auto &mat = cell_material(c);
-            gather<dim>(x, mesh_.cells[c], xe);
-            gather<dim>(u, mesh_.cells[c], ue);
+            const auto &mat  = cell_material(c);
+            const auto &cell = mesh_.cells[c];
+            gather<dim>(x, cell, xe);
+            gather<dim>(u, cell, ue);
             const auto geo = cell_geometry<dim>(xe, ue);
             Eigen::Matrix<double, dim * dim, dim * dim> psi_hessian =
               energy_density_derivatives<dim>(mat, geo.F).hess;
@@ -199,23 +204,18 @@ namespace ritr
               for (int k = 0; k < dim; ++k)
                 for (int j = 0; j < dim; ++j)
                   dF_dx(k * dim + j, a * dim + k) = geo.shape_gradients[a][j];
-            Local &block = blocks[c];
             block.noalias() = (weights_.potential * geo.measure) * dF_dx.transpose() * psi_hessian * dF_dx;
             for (int a = 0; a <= dim; ++a)
               for (int b = 0; b <= dim; ++b)
                 for (int k = 0; k < dim; ++k)
                   block(a * dim + k, b * dim + k) += weights_.inertia * mat.density * geo.measure * mass[a][b];
+            auto *out = hessian.data() + offset + c * n * n;
+            for (int i = 0; i < n; ++i)
+              for (int j = 0; j < n; ++j)
+                *out++ = Eigen::Triplet<double>(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim,
+                                                block(i, j));
           }
       });
-    hessian.reserve(hessian.size() + blocks.size() * n * n);
-    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
-      {
-        const auto &cell = mesh_.cells[c];
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j)
-            hessian.emplace_back(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim,
-                                 blocks[c](i, j));
-      }
   }
 
   template <int dim>

@@ -176,12 +176,11 @@ namespace ritr
 
   unsigned int Scene::n_steps() const { return std::max(1L, std::lround(end_time / time_step)); }
 
-  void print_parameters(std::ostream &out, const bool markdown)
+  void print_parameters(std::ostream &out)
   {
     ParameterHandler prm;
     declare(prm);
-    prm.print_parameters(out, markdown ? ParameterHandler::OutputStyle::Description :
-                                         ParameterHandler::OutputStyle::PRM);
+    prm.print_parameters(out, ParameterHandler::OutputStyle::PRM);
   }
 
   Scene read_scene(const std::string &file)

@@ -1,4 +1,5 @@
 #include <ritr/common/atomic_file.h>
+#include <ritr/mesh/obstacle_reader.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/output/vtk_files.h>
 #include <ritr/scene/parameters.h>
@@ -122,6 +123,8 @@ namespace ritr
               obstacle = contact::make_box<dim>(to_vec<dim>(s.point), to_vec<dim>(s.size));
             else if (s.type == "spikes")
               obstacle = contact::make_spikes<dim>(to_vec<dim>(s.point), s.size[0], s.count, s.spike_height);
+            else if (s.file.size() > 4 && s.file.substr(s.file.size() - 4) == ".msh")
+              obstacle = read_obstacle_msh<dim>(s.file);
             else
               obstacle = contact::read_obj<dim>(s.file);
           }

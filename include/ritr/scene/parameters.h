@@ -19,9 +19,8 @@ namespace ritr
   // Reads and validates a scene; throws InputError.
   Scene read_scene(const std::string &parameter_file);
 
-  // The scene of prm/default.prm's defaults (used when no file is given is handled by the
-  // caller); every parameter with documentation and default, in .prm syntax or Markdown.
-  void print_parameters(std::ostream &out, bool markdown);
+  // Every parameter with its documentation and default, in .prm syntax.
+  void print_parameters(std::ostream &out);
 
   constexpr unsigned int max_bodies = 8, max_materials = 8, max_dirichlet = 4, max_obstacles = 8;
 } // namespace ritr

@@ -58,6 +58,7 @@ namespace ritr
     double                  time() const { return time_; }
     const std::vector<StepReport> &history() const { return history_; }
     const BulkEnergy<dim>  &bulk_energy() const { return *bulk_; }
+    const NewtonSolver     &newton_solver() const { return newton_; }
     // Physical contact force on every body node (zero without contact).
     Eigen::VectorXd contact_forces() const;
 
