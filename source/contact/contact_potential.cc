@@ -361,7 +361,10 @@ namespace ritr
   {
     const Eigen::MatrixXd V0 = collision_positions(z), V1 = collision_positions(z + dz);
     candidates_ = contact::find_candidates<dim>(surface_, V0, V1, settings_.dhat);
-    return contact::max_step<dim>(surface_, V0, V1, 0.1, 0.0);
+    // Inflating by dhat keeps the separation guarantee (d >= 0.1 d0) for every pair that can
+    // come within the barrier's range, not only for pairs whose swept boxes touch: a pair
+    // ending exactly in contact could otherwise slip through with a round-off-sized gap.
+    return contact::max_step<dim>(surface_, V0, V1, 0.1, settings_.dhat);
   }
 
   template <int dim>

@@ -40,3 +40,4 @@ namespace
 TEST(Robustness, SoftBallOnSpikes2D) { run_scene("ball_on_spikes_2d"); }
 TEST(Robustness, BarImpactAt80MetresPerSecond2D) { run_scene("bar_impact_2d"); }
 TEST(Robustness, SoftBallOnSpikes3D) { run_scene("ball_on_spikes_3d"); }
+TEST(Robustness, TwoBodiesCollide2D) { run_scene("two_bodies_2d"); }
