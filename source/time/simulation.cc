@@ -225,8 +225,9 @@ namespace ritr
       throw InputError(file + ": Dirichlet: the initial prescribed displacement inverts elements");
     if (contact_)
       {
+        // Distances at round-off level are contact too: the barrier could not push them apart.
         const double d = contact_->minimum_distance(state());
-        if (!(d > 0) || contact_->has_intersections(state()))
+        if (!(d > 1e-12 * contact_->bbox_diagonal(state())) || contact_->has_intersections(state()))
           throw InputError(file + ": the initial configuration intersects (bodies or obstacles overlap or touch)");
       }
   }

@@ -1,0 +1,206 @@
+#include <ritr/adaptivity/reference_penalties.h>
+#include <ritr/common/psd_projection.h>
+#include <ritr/common/second_order_dual.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace ritr
+{
+  namespace
+  {
+    // Outward unit normal and measure of a boundary facet at positions u.
+    template <int dim>
+    std::pair<Vec<dim>, double> facet_normal(const std::array<unsigned int, dim> &f, const Eigen::VectorXd &u)
+    {
+      Vec<dim> n = Vec<dim>::Zero();
+      if constexpr (dim == 1)
+        return {n, 1.0};
+      else if constexpr (dim == 2)
+        {
+          const Vec<2> t = u.segment<2>(f[1] * 2) - u.segment<2>(f[0] * 2);
+          n              = Vec<2>(t[1], -t[0]);
+        }
+      else
+        n = 0.5 * (u.segment<3>(f[1] * 3) - u.segment<3>(f[0] * 3)).cross(u.segment<3>(f[2] * 3) - u.segment<3>(f[0] * 3));
+      const double measure = n.norm();
+      return {n / measure, measure};
+    }
+  } // namespace
+
+  template <int dim>
+  std::vector<SlidingConstraint<dim>> classify_sliding(const SimplexMesh<dim> &mesh, const double eps_b)
+  {
+    const Eigen::VectorXd &u = mesh.reference;
+    std::vector<SlidingConstraint<dim>> c(mesh.n_nodes());
+    std::vector<std::vector<unsigned int>> facets_of(mesh.n_nodes());
+    std::vector<std::set<unsigned int>>    neighbours(mesh.n_nodes());  // along boundary edges
+    for (unsigned int f = 0; f < mesh.boundary_facets.size(); ++f)
+      for (int a = 0; a < dim; ++a)
+        {
+          const unsigned int i = mesh.boundary_facets[f][a];
+          facets_of[i].push_back(f);
+          for (int b = 0; b < dim; ++b)
+            if (b != a)
+              neighbours[i].insert(mesh.boundary_facets[f][b]);
+        }
+    for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
+      {
+        if (facets_of[i].empty())
+          continue;
+        auto &ci  = c[i];
+        ci.anchor = mesh.reference_node(i);
+        ci.kind   = SlidingKind::corner;
+        if constexpr (dim == 1)
+          continue;  // rod ends stay put
+        else
+          {
+            double length = 0;
+            for (const unsigned int j : neighbours[i])
+              length += (mesh.reference_node(j) - ci.anchor).norm();
+            ci.length = length / neighbours[i].size();
+
+            // Facet sliding: every incident facet's normal is close to the weighted normal.
+            Vec<dim> normal = Vec<dim>::Zero();
+            for (const unsigned int f : facets_of[i])
+              {
+                const auto [n, w] = facet_normal<dim>(mesh.boundary_facets[f], u);
+                normal += w * n;
+              }
+            normal.normalize();
+            bool planar = true;
+            for (const unsigned int f : facets_of[i])
+              planar &= 1.0 - normal.dot(facet_normal<dim>(mesh.boundary_facets[f], u).first) <= eps_b;
+            if (planar)
+              {
+                ci.kind      = SlidingKind::facet;
+                ci.direction = normal;
+                continue;
+              }
+            // Edge sliding (3D): exactly one pair of boundary edges through i is straight.
+            if constexpr (dim == 3)
+              {
+                const std::vector<unsigned int> ring(neighbours[i].begin(), neighbours[i].end());
+                int                             straight = 0;
+                Vec<dim>                        tangent  = Vec<dim>::Zero();
+                for (std::size_t j = 0; j < ring.size(); ++j)
+                  for (std::size_t k = j + 1; k < ring.size(); ++k)
+                    {
+                      const Vec<dim> tj = (mesh.reference_node(ring[j]) - ci.anchor).normalized();
+                      const Vec<dim> tk = (mesh.reference_node(ring[k]) - ci.anchor).normalized();
+                      if (tj.dot(tk) + 1.0 <= eps_b)
+                        {
+                          ++straight;
+                          tangent = (tj - tk).normalized();
+                        }
+                    }
+                if (straight == 1)
+                  {
+                    ci.kind      = SlidingKind::edge;
+                    ci.direction = tangent;
+                  }
+              }
+          }
+      }
+    return c;
+  }
+
+  template <int dim>
+  double sliding_penalty(const std::vector<SlidingConstraint<dim>> &c, const Eigen::VectorXd &u, const double kappa,
+                         Eigen::VectorXd *gradient, Triplets *hessian)
+  {
+    double energy = 0;
+    for (unsigned int i = 0; i < c.size(); ++i)
+      {
+        if (c[i].kind != SlidingKind::facet && c[i].kind != SlidingKind::edge)
+          continue;
+        const double   scale = kappa / (c[i].length * c[i].length);
+        const Vec<dim> r     = u.template segment<dim>(i * dim) - c[i].anchor;
+        const Vec<dim> &t    = c[i].direction;
+        // Facet: the normal component of r is penalised; edge: everything but the tangent one.
+        Eigen::Matrix<double, dim, dim> P = t * t.transpose();
+        if (c[i].kind == SlidingKind::edge)
+          P = Eigen::Matrix<double, dim, dim>::Identity() - P;
+        energy += 0.5 * scale * r.dot(P * r);
+        if (gradient)
+          gradient->template segment<dim>(i * dim) += scale * P * r;
+        if (hessian)
+          for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b)
+              hessian->emplace_back(i * dim + a, i * dim + b, scale * P(a, b));
+      }
+    return energy;
+  }
+
+  template <int dim>
+  double sliding_violation(const std::vector<SlidingConstraint<dim>> &c, const Eigen::VectorXd &u)
+  {
+    double worst = 0;
+    for (unsigned int i = 0; i < c.size(); ++i)
+      if (c[i].kind == SlidingKind::facet || c[i].kind == SlidingKind::edge)
+        {
+          const Vec<dim> r = u.template segment<dim>(i * dim) - c[i].anchor;
+          const Vec<dim> &t = c[i].direction;
+          worst = std::max(worst, c[i].kind == SlidingKind::facet ? std::abs(r.dot(t)) : (r - r.dot(t) * t).norm());
+        }
+    return worst;
+  }
+
+  template <int dim>
+  double reference_measure_barrier(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &u, const double w_hat,
+                                   const double kappa, Eigen::VectorXd *gradient, Triplets *hessian,
+                                   const bool project_psd)
+  {
+    constexpr int n = dim * (dim + 1);
+    using Dual      = SecondOrderDual<n>;
+    double energy   = 0;
+    for (const auto &cell : mesh.cells)
+      {
+        const double w = simplex_measure<dim, double>(cell_nodes<dim>(u, cell));
+        if (w >= w_hat)
+          continue;
+        if (w <= 0)
+          return std::numeric_limits<double>::infinity();
+        const double r = w - w_hat, l = std::log(w / w_hat);
+        energy += kappa * -r * r * l;
+        if (!gradient && !hessian)
+          continue;
+        std::array<std::array<Dual, dim>, dim + 1> nodes;
+        for (int a = 0; a <= dim; ++a)
+          for (int k = 0; k < dim; ++k)
+            nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
+        const Dual   measure = simplex_measure<dim, Dual>(nodes);
+        const double db      = -2 * r * l - r * r / w;
+        const double d2b     = -2 * l - 4 * r / w + r * r / (w * w);
+        if (gradient)
+          for (int i = 0; i < n; ++i)
+            (*gradient)[cell[i / dim] * dim + i % dim] += kappa * db * measure.grad[i];
+        if (hessian)
+          {
+            Eigen::Matrix<double, n, n> block =
+              kappa * (d2b * measure.grad * measure.grad.transpose() + db * measure.hess);
+            if (project_psd)
+              block = project_to_psd(block);
+            for (int i = 0; i < n; ++i)
+              for (int j = 0; j < n; ++j)
+                hessian->emplace_back(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim, block(i, j));
+          }
+      }
+    return energy;
+  }
+
+#define RITR_INSTANTIATE(dim)                                                                                    \
+  template std::vector<SlidingConstraint<dim>> classify_sliding<dim>(const SimplexMesh<dim> &, double);          \
+  template double sliding_penalty<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &,     \
+                                       double, Eigen::VectorXd *, Triplets *);                                   \
+  template double sliding_violation<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &);  \
+  template double reference_measure_barrier<dim>(const SimplexMesh<dim> &, const Eigen::VectorXd &, double,      \
+                                                 double, Eigen::VectorXd *, Triplets *, bool);
+  RITR_INSTANTIATE(1)
+  RITR_INSTANTIATE(2)
+  RITR_INSTANTIATE(3)
+#undef RITR_INSTANTIATE
+} // namespace ritr
