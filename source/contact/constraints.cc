@@ -209,6 +209,26 @@ namespace ritr::contact
         }
     }
 
+    // The unweighted barrier of c at V with its gradient on the full stencil: scale times the
+    // gradient goes to out (stencil-ordered, zero where the barrier does not depend), the
+    // value is returned (0 if inactive).
+    template <int dim, typename Out>
+    double local_gradient(const Constraint &c, const Eigen::MatrixXd &V, const double dhat_sqr,
+                          const double scale, Out &&out)
+    {
+      const StencilVector<dim> x     = gather_stencil<dim>(c, V);
+      const LocalView          v     = local_view<dim>(c, x, dhat_sqr);
+      double                   value = 0.0;
+      out.setZero();
+      with_local_dual<dim, FirstOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
+        value = b.value;
+        for (int j = 0; j < v.n; ++j)
+          out.template segment<dim>(v.slots[j] * dim) =
+            scale * b.grad.template segment<dim>(j * dim);
+      });
+      return value;
+    }
+
     constexpr std::size_t grain = 64;
   } // namespace constraints_detail
   using namespace constraints_detail;
@@ -326,18 +346,8 @@ namespace ritr::contact
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, constraints.size(), grain),
                       [&](const auto &range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i)
-                          {
-                            const Constraint        &c = constraints[i];
-                            const StencilVector<dim> x = gather_stencil<dim>(c, V);
-                            const LocalView          v = local_view<dim>(c, x, dhat_sqr);
-                            local.col(i).setZero();
-                            const double w = weights.weight(c);
-                            with_local_dual<dim, FirstOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
-                              for (int j = 0; j < v.n; ++j)
-                                local.col(i).template segment<dim>(v.slots[j] * dim) =
-                                  w * b.grad.template segment<dim>(j * dim);
-                            });
-                          }
+                          local_gradient<dim>(constraints[i], V, dhat_sqr,
+                                              weights.weight(constraints[i]), local.col(i));
                       });
     Eigen::VectorXd g = Eigen::VectorXd::Zero(V.rows() * dim);
     for (std::size_t i = 0; i < constraints.size(); ++i)
@@ -403,17 +413,10 @@ namespace ritr::contact
                       [&](const auto &range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i)
                           {
-                            const Constraint        &c = constraints[i];
-                            const StencilVector<dim> x = gather_stencil<dim>(c, V);
-                            const LocalView          v = local_view<dim>(c, x, dhat_sqr);
-                            BarrierTerm             &t = terms[i];
-                            t.gradient.setZero(c.n_vertices * dim);
-                            with_local_dual<dim, FirstOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
-                              t.value = b.value;
-                              for (int j = 0; j < v.n; ++j)
-                                t.gradient.template segment<dim>(v.slots[j] * dim) =
-                                  b.grad.template segment<dim>(j * dim);
-                            });
+                            const Constraint &c = constraints[i];
+                            BarrierTerm      &t = terms[i];
+                            t.gradient.resize(c.n_vertices * dim);
+                            t.value = local_gradient<dim>(c, V, dhat_sqr, 1.0, t.gradient);
                           }
                       });
     return terms;

@@ -80,6 +80,30 @@ namespace ritr::contact
       return {DistanceType::point_line, {{sp, sa, sb, -1}}};
     }
 
+    // A point against a segment, with their stencil slots (see classify_point_segment).
+    struct PointSegment
+    {
+      const Vec<3> &p, &a, &b;
+      int           sp, sa, sb;
+    };
+
+    // The class of the closest of several point-segment pairs (the first one on ties).
+    DistanceClass closest_point_segment(std::initializer_list<PointSegment> pairs)
+    {
+      DistanceClass best;
+      double        best_d = 0.0;
+      bool          first  = true;
+      for (const PointSegment &q : pairs)
+        {
+          double              d   = 0.0;
+          const DistanceClass cls = classify_point_segment<3>(q.p, q.a, q.b, q.sp, q.sa, q.sb, d);
+          if (first || d < best_d)
+            best = cls, best_d = d;
+          first = false;
+        }
+      return best;
+    }
+
     DistanceClass classify_point_triangle(const Vec<3> &p, const Vec<3> &t0, const Vec<3> &t1,
                                           const Vec<3> &t2)
     {
@@ -96,15 +120,8 @@ namespace ritr::contact
           if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
             return {DistanceType::point_plane, {{0, 1, 2, 3}}};
         }
-      double        best_d = 0.0, d = 0.0;
-      DistanceClass best = classify_point_segment<3>(p, t0, t1, 0, 1, 2, best_d);
-      DistanceClass cls  = classify_point_segment<3>(p, t1, t2, 0, 2, 3, d);
-      if (d < best_d)
-        best = cls, best_d = d;
-      cls = classify_point_segment<3>(p, t2, t0, 0, 3, 1, d);
-      if (d < best_d)
-        best = cls;
-      return best;
+      return closest_point_segment(
+        {{p, t0, t1, 0, 1, 2}, {p, t1, t2, 0, 2, 3}, {p, t2, t0, 0, 3, 1}});
     }
 
     DistanceClass classify_edge_edge(const Vec<3> &a0, const Vec<3> &a1, const Vec<3> &b0,
@@ -122,28 +139,10 @@ namespace ritr::contact
           if (s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)
             return {DistanceType::line_line, {{0, 1, 2, 3}}};
         }
-      double        best_d = 0.0, dd = 0.0;
-      DistanceClass best = classify_point_segment<3>(a0, b0, b1, 0, 2, 3, best_d);
-      DistanceClass cls  = classify_point_segment<3>(a1, b0, b1, 1, 2, 3, dd);
-      if (dd < best_d)
-        best = cls, best_d = dd;
-      cls = classify_point_segment<3>(b0, a0, a1, 2, 0, 1, dd);
-      if (dd < best_d)
-        best = cls, best_d = dd;
-      cls = classify_point_segment<3>(b1, a0, a1, 3, 0, 1, dd);
-      if (dd < best_d)
-        best = cls;
-      return best;
-    }
-
-    template <int dim>
-    StencilVector<dim> stack(std::initializer_list<Vec<dim>> points)
-    {
-      StencilVector<dim> x = StencilVector<dim>::Zero();
-      int                i = 0;
-      for (const auto &p : points)
-        x.template segment<dim>(dim * i++) = p;
-      return x;
+      return closest_point_segment({{a0, b0, b1, 0, 2, 3},
+                                    {a1, b0, b1, 1, 2, 3},
+                                    {b0, a0, a1, 2, 0, 1},
+                                    {b1, a0, a1, 3, 0, 1}});
     }
   } // namespace
 
@@ -263,13 +262,13 @@ namespace ritr::contact
   double point_triangle_distance_sqr(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
                                      const Eigen::Vector3d &t1, const Eigen::Vector3d &t2)
   {
-    return distance_sqr<3>(ContactKind::point_triangle, stack<3>({p, t0, t1, t2}));
+    return distance_sqr<3>(ContactKind::point_triangle, make_stencil<3>({p, t0, t1, t2}));
   }
 
   double edge_edge_distance_sqr(const Eigen::Vector3d &ea0, const Eigen::Vector3d &ea1,
                                 const Eigen::Vector3d &eb0, const Eigen::Vector3d &eb1)
   {
-    return distance_sqr<3>(ContactKind::edge_edge, stack<3>({ea0, ea1, eb0, eb1}));
+    return distance_sqr<3>(ContactKind::edge_edge, make_stencil<3>({ea0, ea1, eb0, eb1}));
   }
 
 #define RITR_INSTANTIATE(dim)                                                                    \

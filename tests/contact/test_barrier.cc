@@ -4,110 +4,28 @@
 #include <ritr/contact/barrier.h>
 #include <ritr/contact/constraints.h>
 
+#include "contact_test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
-#include <random>
-
 using namespace ritr::contact;
+using namespace ritr::contact::test_support;
+
+const std::mt19937::result_type ritr::contact::test_support::rng_seed = 99;
 
 namespace
 {
-  template <int dim>
-  using Vec = Eigen::Matrix<double, dim, 1>;
-
-  std::mt19937 &rng()
-  {
-    static std::mt19937 gen(99);
-    return gen;
-  }
-  double uniform(const double a = -1.0, const double b = 1.0)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng());
-  }
-
   // ---- Small scenes -----------------------------------------------------------------------
-
-  template <int dim>
-  struct Scene
-  {
-    CollisionSurface<dim> surface;
-    std::vector<Vec<dim>> points;
-
-    int add_vertex(const Vec<dim> &x, const bool obstacle, const int body)
-    {
-      points.push_back(x);
-      surface.is_obstacle.push_back(obstacle);
-      surface.body_id.push_back(body);
-      return surface.n_vertices++;
-    }
-    Eigen::MatrixXd V() const
-    {
-      Eigen::MatrixXd M(points.size(), dim);
-      for (std::size_t i = 0; i < points.size(); ++i)
-        M.row(i) = points[i].transpose();
-      return M;
-    }
-  };
 
   // 1D: rods [a, b] (two vertices each) and obstacle wall points.
   void add_rod(Scene<1> &s, const double a, const double b, const int body)
   {
     s.add_vertex(Vec<1>(a), false, body);
     s.add_vertex(Vec<1>(b), false, body);
-  }
-
-  // 2D: jittered regular polygon, counter-clockwise boundary.
-  void add_polygon(Scene<2> &s, const Vec<2> &center, const double radius, const int n,
-                   const double jitter, const bool obstacle, const int body)
-  {
-    const double phase = uniform(0, 6.28);
-    const int    first = s.surface.n_vertices;
-    for (int i = 0; i < n; ++i)
-      {
-        const double a = phase + 2 * M_PI * i / n;
-        const double r = radius * (1 + jitter * uniform());
-        s.add_vertex(center + r * Vec<2>(std::cos(a), std::sin(a)), obstacle, body);
-      }
-    for (int i = 0; i < n; ++i)
-      s.surface.edges.push_back({{first + i, first + (i + 1) % n}});
-  }
-
-  // 3D: jittered, randomly rotated octahedron.
-  void add_octahedron(Scene<3> &s, const Vec<3> &center, const double radius, const double jitter,
-                      const bool obstacle, const int body)
-  {
-    const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(uniform(0, 6.28), Vec<3>(uniform(), uniform(), uniform()).normalized())
-        .toRotationMatrix();
-    const int first = s.surface.n_vertices;
-    for (int k = 0; k < 3; ++k)
-      for (const double sign : {1.0, -1.0})
-        {
-          Vec<3> p = Vec<3>::Zero();
-          p[k]     = sign * radius * (1 + jitter * uniform());
-          s.add_vertex(center + R * p, obstacle, body);
-        }
-    // Vertices: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z.
-    const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                             {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-    for (const auto &f : faces)
-      s.surface.faces.push_back({{first + f[0], first + f[1], first + f[2]}});
-    s.surface.edges = edges_of_faces(s.surface.faces);
-  }
-
-  void add_ground(Scene<3> &s, const double z, const double half)
-  {
-    const int a = s.add_vertex(Vec<3>(-half, -half, z), true, -1);
-    const int b = s.add_vertex(Vec<3>(half, -half, z), true, -1);
-    const int c = s.add_vertex(Vec<3>(half, half, z), true, -1);
-    const int d = s.add_vertex(Vec<3>(-half, half, z), true, -1);
-    s.surface.faces.push_back({{a, b, c}});
-    s.surface.faces.push_back({{a, c, d}});
-    s.surface.edges = edges_of_faces(s.surface.faces);
   }
 
   Scene<1> scene_1d()
@@ -121,56 +39,12 @@ namespace
     return s;
   }
 
-  Scene<2> scene_2d()
+  // Random weights for the surface's weight owners: vertices, and in 3D edges.
+  template <int dim>
+  ConstraintWeights random_weights(const CollisionSurface<dim> &s)
   {
-    Scene<2> s;
-    add_polygon(s, Vec<2>(0, 0), 1.0, 12, 0.05, false, 0);
-    add_polygon(s, Vec<2>(2.1, 0.1), 1.0, 9, 0.05, false, 1);
-    add_polygon(s, Vec<2>(1.0, 1.75), 0.8, 7, 0.05, true, 2);
-    return s;
-  }
-
-  Scene<3> scene_3d()
-  {
-    Scene<3> s;
-    add_octahedron(s, Vec<3>(0, 0, 0), 1.0, 0.1, false, 0);
-    add_octahedron(s, Vec<3>(1.35, 0.2, 0.3), 0.7, 0.1, false, 1);
-    add_ground(s, -0.95, 3.0);
-    return s;
-  }
-
-  ConstraintWeights random_weights(const int n_vertices, const int n_edges)
-  {
-    ConstraintWeights w;
-    for (int i = 0; i < n_vertices; ++i)
-      w.vertex_weights.push_back(uniform(0.5, 2.0));
-    for (int i = 0; i < n_edges; ++i)
-      w.edge_weights.push_back(uniform(0.5, 2.0));
-    return w;
-  }
-
-  Eigen::MatrixXd dense(const std::vector<Eigen::Triplet<double>> &t, const int n)
-  {
-    Eigen::SparseMatrix<double> H(n, n);
-    H.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(H);
-  }
-
-  Eigen::MatrixXd reshape(const Eigen::VectorXd &x, const int dim)
-  {
-    Eigen::MatrixXd V(x.size() / dim, dim);
-    for (int i = 0; i < V.rows(); ++i)
-      for (int k = 0; k < dim; ++k)
-        V(i, k) = x[i * dim + k];
-    return V;
-  }
-  Eigen::VectorXd flatten(const Eigen::MatrixXd &V)
-  {
-    Eigen::VectorXd x(V.size());
-    for (int i = 0; i < V.rows(); ++i)
-      for (int k = 0; k < V.cols(); ++k)
-        x[i * V.cols() + k] = V(i, k);
-    return x;
+    return test_support::random_weights(s.n_vertices,
+                                        dim == 3 ? static_cast<int>(s.edges.size()) : 0);
   }
 
   // Central-difference checks of the assembled barrier at V (constraint set fixed).
@@ -179,29 +53,27 @@ namespace
                                            const Eigen::MatrixXd &V, const double dhat,
                                            const ConstraintWeights &w, const double tol = 1e-5)
   {
-    const Eigen::VectorXd x = flatten(V);
-    const int             n = static_cast<int>(x.size());
-    const Eigen::VectorXd g = barrier_gradient<dim>(cs, V, dhat, w);
-    const Eigen::MatrixXd H = dense(barrier_hessian<dim>(cs, V, dhat, w, false), n);
-    Eigen::VectorXd       g_fd(n);
-    Eigen::MatrixXd       H_fd(n, n);
-    const double          h = 1e-7;
-    for (int i = 0; i < n; ++i)
-      {
-        Eigen::VectorXd xp = x, xm = x;
-        xp[i] += h, xm[i] -= h;
-        g_fd[i] = (barrier_energy<dim>(cs, reshape(xp, dim), dhat, w) -
-                   barrier_energy<dim>(cs, reshape(xm, dim), dhat, w)) /
-                  (2 * h);
-        H_fd.col(i) = (barrier_gradient<dim>(cs, reshape(xp, dim), dhat, w) -
-                       barrier_gradient<dim>(cs, reshape(xm, dim), dhat, w)) /
-                      (2 * h);
-      }
-    EXPECT_GT(g.norm(), 0.0);
-    EXPECT_LE((g - g_fd).norm(), tol * g.norm()) << "g    = " << g.transpose() << "\ng_fd = "
-                                                 << g_fd.transpose();
-    EXPECT_LE((H - H_fd).norm(), tol * H.norm());
-    EXPECT_LE((H - H.transpose()).norm(), 1e-12 * H.norm());
+    expect_assembled_derivatives_match_fd(
+      [&](const Eigen::MatrixXd &W) { return barrier_energy<dim>(cs, W, dhat, w); },
+      [&](const Eigen::MatrixXd &W) { return barrier_gradient<dim>(cs, W, dhat, w); },
+      [&](const Eigen::MatrixXd &W) { return barrier_hessian<dim>(cs, W, dhat, w, false); }, V,
+      tol);
+  }
+
+  // The projected barrier Hessian of the scene (random weights) is PSD; returns whether the
+  // unprojected one is indefinite.
+  template <int dim>
+  bool expect_projected_hessian_psd(const Scene<dim> &s, const double dhat)
+  {
+    const Eigen::MatrixXd V  = s.V();
+    const auto            cs = build_constraints<dim>(s.surface, V, V, dhat);
+    const auto            w  = random_weights(s.surface);
+    const int             n  = dim * s.surface.n_vertices;
+    const Eigen::MatrixXd Hp = dense(barrier_hessian<dim>(cs, V, dhat, w, true), n);
+    const Eigen::MatrixXd H  = dense(barrier_hessian<dim>(cs, V, dhat, w, false), n);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hp), eig_raw(H);
+    EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().cwiseAbs().maxCoeff());
+    return eig_raw.eigenvalues().minCoeff() < -1e-8 * H.norm();
   }
 } // namespace
 
@@ -271,7 +143,7 @@ TEST(BarrierAssembly, FiniteDifferences1D)
       EXPECT_FALSE(s.surface.vertex_is_obstacle(c.first)); // body vertex owns the weight
       EXPECT_EQ(c.weight_index, c.first);
     }
-  expect_barrier_derivatives_match_fd<1>(cs, V, dhat, random_weights(s.surface.n_vertices, 0));
+  expect_barrier_derivatives_match_fd<1>(cs, V, dhat, random_weights(s.surface));
 }
 
 TEST(BarrierAssembly, FiniteDifferences2D)
@@ -291,8 +163,7 @@ TEST(BarrierAssembly, FiniteDifferences2D)
           ++n_types[c.distance_type == DistanceType::point_line ? 1 : 0];
         }
       EXPECT_GT(n_types[1], 0);
-      expect_barrier_derivatives_match_fd<2>(cs, V, dhat,
-                                             random_weights(s.surface.n_vertices, 0));
+      expect_barrier_derivatives_match_fd<2>(cs, V, dhat, random_weights(s.surface));
     }
 }
 
@@ -316,9 +187,7 @@ TEST(BarrierAssembly, FiniteDifferences3D)
               EXPECT_GT(c.mollifier_threshold, 0.0);
             }
         }
-      expect_barrier_derivatives_match_fd<3>(
-        cs, V, dhat,
-        random_weights(s.surface.n_vertices, static_cast<int>(s.surface.edges.size())));
+      expect_barrier_derivatives_match_fd<3>(cs, V, dhat, random_weights(s.surface));
     }
   EXPECT_GT(n_pt, 0);
   EXPECT_GT(n_ee, 0);
@@ -374,15 +243,8 @@ TEST(BarrierAssembly, ExactlyParallelEdgesAreSwitchedOff)
   EXPECT_EQ(barrier_gradient<3>(cs, V, dhat, {}).norm(), 0.0);
   const Eigen::MatrixXd H = dense(barrier_hessian<3>(cs, V, dhat, {}, false), 12);
   EXPECT_GT(H.norm(), 0.0);
-  Eigen::MatrixXd H_fd(12, 12);
-  const double    h = 1e-8;
-  for (int i = 0; i < 12; ++i)
-    {
-      Eigen::MatrixXd Vp = V, Vm = V;
-      Vp(i / 3, i % 3) += h, Vm(i / 3, i % 3) -= h;
-      H_fd.col(i) = (barrier_gradient<3>(cs, Vp, dhat, {}) - barrier_gradient<3>(cs, Vm, dhat, {})) /
-                    (2 * h);
-    }
+  const Eigen::MatrixXd H_fd = fd_position_jacobian(
+    [&](const Eigen::MatrixXd &W) { return barrier_gradient<3>(cs, W, dhat, {}); }, V, 1e-8);
   EXPECT_LE((H - H_fd).norm(), 1e-5 * H.norm());
 }
 
@@ -411,32 +273,8 @@ TEST(BarrierAssembly, ProjectedHessianIsPositiveSemiDefinite)
   bool saw_indefinite = false;
   for (int trial = 0; trial < 4; ++trial)
     {
-      {
-        auto                  s    = scene_2d();
-        const Eigen::MatrixXd V    = s.V();
-        const double          dhat = 0.3;
-        const auto            cs   = build_constraints<2>(s.surface, V, V, dhat);
-        const auto            w    = random_weights(s.surface.n_vertices, 0);
-        const int             n    = 2 * s.surface.n_vertices;
-        const Eigen::MatrixXd Hp   = dense(barrier_hessian<2>(cs, V, dhat, w, true), n);
-        const Eigen::MatrixXd H    = dense(barrier_hessian<2>(cs, V, dhat, w, false), n);
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hp), eig_raw(H);
-        EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().cwiseAbs().maxCoeff());
-        saw_indefinite |= eig_raw.eigenvalues().minCoeff() < -1e-8 * H.norm();
-      }
-      {
-        auto                  s    = scene_3d();
-        const Eigen::MatrixXd V    = s.V();
-        const double          dhat = 0.35;
-        const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
-        const auto w = random_weights(s.surface.n_vertices, static_cast<int>(s.surface.edges.size()));
-        const int  n = 3 * s.surface.n_vertices;
-        const Eigen::MatrixXd Hp = dense(barrier_hessian<3>(cs, V, dhat, w, true), n);
-        const Eigen::MatrixXd H  = dense(barrier_hessian<3>(cs, V, dhat, w, false), n);
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hp), eig_raw(H);
-        EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().cwiseAbs().maxCoeff());
-        saw_indefinite |= eig_raw.eigenvalues().minCoeff() < -1e-8 * H.norm();
-      }
+      saw_indefinite |= expect_projected_hessian_psd<2>(scene_2d(), 0.3);
+      saw_indefinite |= expect_projected_hessian_psd<3>(scene_3d(), 0.35);
     }
   // The test is only meaningful if projection had something to do.
   EXPECT_TRUE(saw_indefinite);
@@ -448,7 +286,7 @@ TEST(BarrierAssembly, UnweightedTermsReassembleEnergyAndGradient)
   const Eigen::MatrixXd V    = s.V();
   const double          dhat = 0.35;
   const auto            cs   = build_constraints<3>(s.surface, V, V, dhat);
-  const auto w = random_weights(s.surface.n_vertices, static_cast<int>(s.surface.edges.size()));
+  const auto            w    = random_weights(s.surface);
   const auto terms = unweighted_barrier_terms<3>(cs, V, dhat);
   ASSERT_EQ(terms.size(), cs.size());
   double          E = 0.0;

@@ -3,68 +3,29 @@
 #include <ritr/contact/broad_phase.h>
 #include <ritr/contact/constraints.h>
 
+#include "contact_test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include <chrono>
-#include <random>
 #include <set>
 #include <tuple>
 
 using namespace ritr::contact;
+using namespace ritr::contact::test_support;
+
+const std::mt19937::result_type ritr::contact::test_support::rng_seed = 7;
 
 namespace
 {
-  template <int dim>
-  using Vec = Eigen::Matrix<double, dim, 1>;
-
-  std::mt19937 &rng()
-  {
-    static std::mt19937 gen(7);
-    return gen;
-  }
-  double uniform(const double a = -1.0, const double b = 1.0)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng());
-  }
-  template <int dim>
-  Vec<dim> random_point(const double half)
-  {
-    Vec<dim> p;
-    for (int k = 0; k < dim; ++k)
-      p[k] = uniform(-half, half);
-    return p;
-  }
-
-  template <int dim>
-  struct Scene
-  {
-    CollisionSurface<dim> surface;
-    std::vector<Vec<dim>> points;
-
-    int add_vertex(const Vec<dim> &x, const bool obstacle)
-    {
-      points.push_back(x);
-      surface.is_obstacle.push_back(obstacle);
-      surface.body_id.push_back(0);
-      return surface.n_vertices++;
-    }
-    Eigen::MatrixXd V() const
-    {
-      Eigen::MatrixXd M(points.size(), dim);
-      for (std::size_t i = 0; i < points.size(); ++i)
-        M.row(i) = points[i].transpose();
-      return M;
-    }
-  };
-
   // Random scenes of small primitives scattered in a box (some of them obstacles).
   Scene<1> random_scene_1d(const int n)
   {
     Scene<1> s;
     for (int i = 0; i < n; ++i)
-      s.add_vertex(random_point<1>(1.0), uniform(0, 1) < 0.2);
+      s.add_vertex(random_vector<1>(), uniform(0, 1) < 0.2);
     return s;
   }
 
@@ -73,12 +34,12 @@ namespace
     Scene<2> s;
     for (int p = 0; p < n_polygons; ++p)
       {
-        const Vec<2> c        = random_point<2>(1.0);
+        const Vec<2> c        = random_vector<2>();
         const bool   obstacle = uniform(0, 1) < 0.2;
         const int    n        = 3 + p % 3;
         const int    first    = s.surface.n_vertices;
         for (int i = 0; i < n; ++i)
-          s.add_vertex(c + 0.15 * random_point<2>(1.0), obstacle);
+          s.add_vertex(c + 0.15 * random_vector<2>(), obstacle);
         for (int i = 0; i < n; ++i)
           s.surface.edges.push_back({{first + i, first + (i + 1) % n}});
       }
@@ -90,11 +51,11 @@ namespace
     Scene<3> s;
     for (int t = 0; t < n_tets; ++t)
       {
-        const Vec<3> c        = random_point<3>(1.0);
+        const Vec<3> c        = random_vector<3>();
         const bool   obstacle = uniform(0, 1) < 0.2;
         const int    first    = s.surface.n_vertices;
         for (int i = 0; i < 4; ++i)
-          s.add_vertex(c + 0.25 * random_point<3>(1.0), obstacle);
+          s.add_vertex(c + 0.25 * random_vector<3>(), obstacle);
         const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
         for (const auto &fa : f)
           s.surface.faces.push_back({{first + fa[0], first + fa[1], first + fa[2]}});
@@ -240,15 +201,15 @@ TEST(BroadPhase, AabbTreeQueriesMatchBruteForce)
   std::vector<Aabb<3>> boxes(500);
   for (auto &b : boxes)
     {
-      b.min = random_point<3>(1.0);
-      b.max = b.min + 0.1 * (random_point<3>(1.0).array() + 1.0).matrix();
+      b.min = random_vector<3>();
+      b.max = b.min + 0.1 * (random_vector<3>().array() + 1.0).matrix();
     }
   const AabbTree<3> tree(boxes);
   for (int q = 0; q < 100; ++q)
     {
       Aabb<3> query;
-      query.min = random_point<3>(1.0);
-      query.max = query.min + 0.3 * (random_point<3>(1.0).array() + 1.0).matrix();
+      query.min = random_vector<3>();
+      query.max = query.min + 0.3 * (random_vector<3>().array() + 1.0).matrix();
       std::set<int> found, expected;
       tree.for_each_overlap(query, [&](const int i) { EXPECT_TRUE(found.insert(i).second); });
       for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
@@ -283,7 +244,7 @@ void check_swept_broad_phase(const Scene<dim> &scene, const double r)
   const auto      V0 = scene.V();
   Eigen::MatrixXd V1 = V0;
   for (int i = 0; i < V1.rows(); ++i)
-    V1.row(i) += 0.2 * random_point<dim>(1.0).transpose();
+    V1.row(i) += 0.2 * random_vector<dim>().transpose();
   const auto cs = find_candidates<dim>(s, V0, V1, r);
   check_candidates_valid<dim>(s, cs);
   std::set<std::tuple<int, int, int>> expected, found;

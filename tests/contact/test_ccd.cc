@@ -4,39 +4,19 @@
 #include <ritr/contact/ccd.h>
 #include <ritr/contact/constraints.h>
 
+#include "contact_test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
-#include <random>
-
 using namespace ritr::contact;
+using namespace ritr::contact::test_support;
+
+const std::mt19937::result_type ritr::contact::test_support::rng_seed = 2024;
 
 namespace
 {
-  template <int dim>
-  using Vec = Eigen::Matrix<double, dim, 1>;
-
-  std::mt19937 &rng()
-  {
-    static std::mt19937 gen(2024);
-    return gen;
-  }
-  double uniform(const double a = -1.0, const double b = 1.0)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng());
-  }
-
-  template <int dim>
-  StencilVector<dim> stencil(std::initializer_list<Vec<dim>> points)
-  {
-    StencilVector<dim> x = StencilVector<dim>::Zero();
-    int                i = 0;
-    for (const auto &p : points)
-      x.template segment<dim>(dim * i++) = p;
-    return x;
-  }
-
   template <int dim>
   double distance_at(const ContactKind kind, const StencilVector<dim> &x0,
                      const StencilVector<dim> &x1, const double t)
@@ -69,15 +49,15 @@ TEST(AdditiveCcd, PointApproachingPlaneIsNotOverlyConservative)
 {
   // Distance 1, displacement 2 straight into the plane: contact at t = 0.5.
   const Vec<3> t0(-1, -1, 0), t1(2, -1, 0), t2(-1, 2, 0);
-  const auto   x0 = stencil<3>({{0.2, 0.2, 1}, t0, t1, t2});
-  const auto   x1 = stencil<3>({{0.2, 0.2, -1}, t0, t1, t2});
+  const auto   x0 = make_stencil<3>({{0.2, 0.2, 1}, t0, t1, t2});
+  const auto   x1 = make_stencil<3>({{0.2, 0.2, -1}, t0, t1, t2});
   const double t  = checked_ccd<3>(ContactKind::point_triangle, x0, x1);
   EXPECT_GT(t, 0.4);
   EXPECT_LE(t, 0.5);
   // Same motion split between the point and the triangle.
-  const auto y0 = stencil<3>({{0.2, 0.2, 1}, t0, t1, t2});
+  const auto y0 = make_stencil<3>({{0.2, 0.2, 1}, t0, t1, t2});
   const Vec<3> up(0, 0, 1);
-  const auto y1 = stencil<3>({{0.2, 0.2, 0}, t0 + up, t1 + up, t2 + up});
+  const auto y1 = make_stencil<3>({{0.2, 0.2, 0}, t0 + up, t1 + up, t2 + up});
   const double u = checked_ccd<3>(ContactKind::point_triangle, y0, y1);
   EXPECT_GT(u, 0.4);
   EXPECT_LE(u, 0.5);
@@ -85,19 +65,19 @@ TEST(AdditiveCcd, PointApproachingPlaneIsNotOverlyConservative)
 
 TEST(AdditiveCcd, NoMotionOrSeparatingMotionGivesFullStep)
 {
-  const auto x0 = stencil<2>({{0, 1}, {-1, 0}, {1, 0}});
+  const auto x0 = make_stencil<2>({{0, 1}, {-1, 0}, {1, 0}});
   EXPECT_EQ(additive_ccd<2>(ContactKind::point_edge, x0, x0), 1.0);
-  const auto x1 = stencil<2>({{0, 3}, {-1, 0}, {1, 0}});
+  const auto x1 = make_stencil<2>({{0, 3}, {-1, 0}, {1, 0}});
   EXPECT_EQ(additive_ccd<2>(ContactKind::point_edge, x0, x1), 1.0);
   // Rigid translation of the whole pair.
-  const auto x2 = stencil<2>({{5, 6}, {4, 5}, {6, 5}});
+  const auto x2 = make_stencil<2>({{5, 6}, {4, 5}, {6, 5}});
   EXPECT_EQ(additive_ccd<2>(ContactKind::point_edge, x0, x2), 1.0);
 }
 
 TEST(AdditiveCcd, TouchingAtStartGivesZero)
 {
-  const auto x0 = stencil<2>({{0, 0}, {-1, 0}, {1, 0}});
-  const auto x1 = stencil<2>({{0, -1}, {-1, 0}, {1, 0}});
+  const auto x0 = make_stencil<2>({{0, 0}, {-1, 0}, {1, 0}});
+  const auto x1 = make_stencil<2>({{0, -1}, {-1, 0}, {1, 0}});
   EXPECT_EQ(additive_ccd<2>(ContactKind::point_edge, x0, x1), 0.0);
 }
 
@@ -127,15 +107,15 @@ TEST(AdditiveCcd, ThinFastObstacleEdgeCrossingPoint)
 {
   // A segment (zero thickness) moves 10 units in one step across a point at distance 0.5:
   // the end positions are both intersection free, only CCD sees the crossing at t = 0.05.
-  const auto   x0 = stencil<2>({{0, 0}, {-1, 0.5}, {1, 0.5}});
-  const auto   x1 = stencil<2>({{0, 0}, {-1, -9.5}, {1, -9.5}});
+  const auto   x0 = make_stencil<2>({{0, 0}, {-1, 0.5}, {1, 0.5}});
+  const auto   x1 = make_stencil<2>({{0, 0}, {-1, -9.5}, {1, -9.5}});
   const double t  = checked_ccd<2>(ContactKind::point_edge, x0, x1);
   EXPECT_LT(t, 0.05);
   EXPECT_GT(t, 0.04);
 
   // Same with the point grazing the very end of the segment.
-  const auto   y0 = stencil<2>({{1 + 1e-9, 0}, {-1, 0.5}, {1, 0.5}});
-  const auto   y1 = stencil<2>({{1 + 1e-9, 0}, {-1, -9.5}, {1, -9.5}});
+  const auto   y0 = make_stencil<2>({{1 + 1e-9, 0}, {-1, 0.5}, {1, 0.5}});
+  const auto   y1 = make_stencil<2>({{1 + 1e-9, 0}, {-1, -9.5}, {1, -9.5}});
   const double u  = checked_ccd<2>(ContactKind::point_edge, y0, y1);
   EXPECT_LT(u, 0.05);
 }
@@ -143,8 +123,8 @@ TEST(AdditiveCcd, ThinFastObstacleEdgeCrossingPoint)
 TEST(AdditiveCcd, RotatingEdgeSweepsThroughPoint)
 {
   // Endpoints move linearly so that the edge flips over; it passes the point at t = 0.3.
-  const auto   x0 = stencil<2>({{0.5, 0.2}, {-1, -1}, {1, 1}});
-  const auto   x1 = stencil<2>({{0.5, 0.2}, {-1, 1}, {1, -1}});
+  const auto   x0 = make_stencil<2>({{0.5, 0.2}, {-1, -1}, {1, 1}});
+  const auto   x1 = make_stencil<2>({{0.5, 0.2}, {-1, 1}, {1, -1}});
   const double t  = checked_ccd<2>(ContactKind::point_edge, x0, x1);
   EXPECT_LT(t, 0.3);
   EXPECT_GT(t, 0.1);
@@ -157,16 +137,16 @@ TEST(AdditiveCcd, VertexGrazingTriangleCorner)
   for (const double offset : {0.0, 1e-9, -1e-9, -1e-6})
     {
       const Vec<3> c(offset, offset, 0);
-      const auto   x0 = stencil<3>({c + Vec<3>(-0.5, -0.5, 0.3), t0, t1, t2});
-      const auto   x1 = stencil<3>({c + Vec<3>(0.5, 0.5, -0.3), t0, t1, t2});
+      const auto   x0 = make_stencil<3>({c + Vec<3>(-0.5, -0.5, 0.3), t0, t1, t2});
+      const auto   x1 = make_stencil<3>({c + Vec<3>(0.5, 0.5, -0.3), t0, t1, t2});
       const double t  = checked_ccd<3>(ContactKind::point_triangle, x0, x1);
       EXPECT_LT(t, 0.5);
       EXPECT_GT(t, 0.2);
     }
   // Sliding past an edge at 1e-7 in the triangle's plane: the distance drops from 1 to 1e-7,
   // so the step must stop where it reaches 0.1.
-  const auto   y0 = stencil<3>({{-1, -1e-7, 0}, t0, t1, t2});
-  const auto   y1 = stencil<3>({{1, -1e-7, 0}, t0, t1, t2});
+  const auto   y0 = make_stencil<3>({{-1, -1e-7, 0}, t0, t1, t2});
+  const auto   y1 = make_stencil<3>({{1, -1e-7, 0}, t0, t1, t2});
   const double u  = checked_ccd<3>(ContactKind::point_triangle, y0, y1);
   EXPECT_GT(u, 0.44);
   EXPECT_LE(u, 0.45 + 1e-12);
@@ -178,15 +158,15 @@ TEST(AdditiveCcd, NearlyParallelEdgesCrossing)
     {
       // Edge a moves from 0.1 above to 0.1 below edge b (crossing at t = 0.5).
       const auto x0 =
-        stencil<3>({{-1, 0, 0.1}, {1, angle, 0.1}, {-0.9, 0, 0}, {1.1, -angle, 0}});
+        make_stencil<3>({{-1, 0, 0.1}, {1, angle, 0.1}, {-0.9, 0, 0}, {1.1, -angle, 0}});
       const auto x1 =
-        stencil<3>({{-1, 0, -0.1}, {1, angle, -0.1}, {-0.9, 0, 0}, {1.1, -angle, 0}});
+        make_stencil<3>({{-1, 0, -0.1}, {1, angle, -0.1}, {-0.9, 0, 0}, {1.1, -angle, 0}});
       const double t = checked_ccd<3>(ContactKind::edge_edge, x0, x1);
       EXPECT_LT(t, 0.5);
       EXPECT_GT(t, 0.4);
       // Also while sliding along each other.
       const auto y1 =
-        stencil<3>({{-0.5, 0, -0.1}, {1.5, angle, -0.1}, {-0.9, 0, 0}, {1.1, -angle, 0}});
+        make_stencil<3>({{-0.5, 0, -0.1}, {1.5, angle, -0.1}, {-0.9, 0, 0}, {1.1, -angle, 0}});
       const double u = checked_ccd<3>(ContactKind::edge_edge, x0, y1);
       EXPECT_LT(u, 0.5);
       EXPECT_GT(u, 0.3);
@@ -195,8 +175,8 @@ TEST(AdditiveCcd, NearlyParallelEdgesCrossing)
 
 TEST(AdditiveCcd, EdgesCrossingAtRightAngles)
 {
-  const auto   x0 = stencil<3>({{-1, 0, 1}, {1, 0, 1}, {0, -1, 0}, {0, 1, 0}});
-  const auto   x1 = stencil<3>({{-1, 0, -1}, {1, 0, -1}, {0, -1, 0}, {0, 1, 0}});
+  const auto   x0 = make_stencil<3>({{-1, 0, 1}, {1, 0, 1}, {0, -1, 0}, {0, 1, 0}});
+  const auto   x1 = make_stencil<3>({{-1, 0, -1}, {1, 0, -1}, {0, -1, 0}, {0, 1, 0}});
   const double t  = checked_ccd<3>(ContactKind::edge_edge, x0, x1);
   EXPECT_GT(t, 0.4);
   EXPECT_LE(t, 0.5);

@@ -3,37 +3,19 @@
 // force sampling of the primitives.
 #include <ritr/contact/distance.h>
 
+#include "contact_test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
-#include <random>
-
 using namespace ritr::contact;
+using namespace ritr::contact::test_support;
+
+const std::mt19937::result_type ritr::contact::test_support::rng_seed = 1234;
 
 namespace
 {
-  template <int dim>
-  using Vec = Eigen::Matrix<double, dim, 1>;
-
-  std::mt19937 &rng()
-  {
-    static std::mt19937 gen(1234);
-    return gen;
-  }
-  double uniform(const double a = -1.0, const double b = 1.0)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng());
-  }
-  template <int n>
-  Eigen::Matrix<double, n, 1> random_vector()
-  {
-    Eigen::Matrix<double, n, 1> v;
-    for (int i = 0; i < n; ++i)
-      v[i] = uniform();
-    return v;
-  }
-
   // Random rigid motion, which preserves every classification.
   template <int dim>
   StencilVector<dim> rigid_motion(const StencilVector<dim> &x)
@@ -50,16 +32,6 @@ namespace
     return y;
   }
 
-  template <int dim>
-  StencilVector<dim> stencil(std::initializer_list<Vec<dim>> points)
-  {
-    StencilVector<dim> x = StencilVector<dim>::Zero();
-    int                i = 0;
-    for (const auto &p : points)
-      x.template segment<dim>(dim * i++) = p;
-    return x;
-  }
-
   // Gradient and Hessian of distance_sqr against central differences (norm-relative).
   template <int dim>
   void expect_derivatives_match_fd(const ContactKind kind, const StencilVector<dim> &x,
@@ -69,21 +41,18 @@ namespace
     StencilMatrix<dim> H;
     const double       d = distance_sqr<dim>(kind, x, g, H);
     EXPECT_NEAR(d, distance_sqr<dim>(kind, x), 1e-14 * (1 + d));
-    const double       h = 1e-6;
-    StencilVector<dim> g_fd;
-    StencilMatrix<dim> H_fd;
-    for (int i = 0; i < stencil_dofs<dim>; ++i)
-      {
-        StencilVector<dim> xp = x, xm = x;
-        xp[i] += h;
-        xm[i] -= h;
-        g_fd[i] = (distance_sqr<dim>(kind, xp) - distance_sqr<dim>(kind, xm)) / (2 * h);
-        StencilVector<dim> gp, gm;
-        StencilMatrix<dim> Hp;
-        distance_sqr<dim>(kind, xp, gp, Hp);
-        distance_sqr<dim>(kind, xm, gm, Hp);
-        H_fd.col(i) = (gp - gm) / (2 * h);
-      }
+    const double             h    = 1e-6;
+    const StencilVector<dim> g_fd = fd_gradient(
+      [&](const Eigen::VectorXd &y) { return distance_sqr<dim>(kind, StencilVector<dim>(y)); }, x,
+      h);
+    const StencilMatrix<dim> H_fd = fd_jacobian(
+      [&](const Eigen::VectorXd &y) {
+        StencilVector<dim> gy;
+        StencilMatrix<dim> Hy;
+        distance_sqr<dim>(kind, StencilVector<dim>(y), gy, Hy);
+        return Eigen::VectorXd(gy);
+      },
+      x, h);
     EXPECT_LE((g - g_fd).norm(), tol * std::max(1e-8, g.norm()))
       << "g = " << g.transpose() << "\ng_fd = " << g_fd.transpose();
     EXPECT_LE((H - H_fd).norm(), tol * std::max(1e-8, H.norm())) << "H =\n"
@@ -93,7 +62,7 @@ namespace
 
   template <int dim>
   void expect_class(const ContactKind kind, const StencilVector<dim> &x, const DistanceType type,
-                    std::initializer_list<int> slots)
+                    const std::vector<int> &slots)
   {
     const DistanceClass cls = classify<dim>(kind, x);
     EXPECT_EQ(static_cast<int>(cls.type), static_cast<int>(type));
@@ -181,6 +150,20 @@ namespace
                         (a0 + (a1 - a0) * i / double(n) - b0 - (b1 - b0) * j / double(n)).squaredNorm());
     return best;
   }
+
+  // point_edge_distance_sqr against brute force over 20001 points of the edge; returns it.
+  template <int dim>
+  double expect_point_edge_matches_sampling(const Vec<dim> &p, const Vec<dim> &a,
+                                            const Vec<dim> &b)
+  {
+    double best = 1e300;
+    for (int i = 0; i <= 20000; ++i)
+      best = std::min(best, (p - a - (b - a) * (i / 20000.0)).squaredNorm());
+    const double d = point_edge_distance_sqr<dim>(p, a, b);
+    EXPECT_LE(d, best + 1e-14);
+    EXPECT_NEAR(std::sqrt(d), std::sqrt(best), 1e-4);
+    return d;
+  }
 } // namespace
 
 // ---- Typed kernels with AD ---------------------------------------------------------------
@@ -192,15 +175,15 @@ TEST(DistanceKernels, AllTypedKernelsMatchFiniteDifferences)
     {
       // 1D vertex-vertex
       expect_derivatives_match_fd<1>(ContactKind::vertex_vertex,
-                                     stencil<1>({Vec<1>(uniform()), Vec<1>(uniform() + 3)}));
+                                     make_stencil<1>({Vec<1>(uniform()), Vec<1>(uniform() + 3)}));
       // 2D point-line (interior region)
-      expect_derivatives_match_fd<2>(ContactKind::point_edge,
-                                     rigid_motion<2>(stencil<2>({{0.3, 0.4}, {-1, 0}, {1, 0}})));
+      expect_derivatives_match_fd<2>(
+        ContactKind::point_edge, rigid_motion<2>(make_stencil<2>({{0.3, 0.4}, {-1, 0}, {1, 0}})));
       // 2D point-point (endpoint regions)
-      expect_derivatives_match_fd<2>(ContactKind::point_edge,
-                                     rigid_motion<2>(stencil<2>({{-1.5, 0.4}, {-1, 0}, {1, 0}})));
-      expect_derivatives_match_fd<2>(ContactKind::point_edge,
-                                     rigid_motion<2>(stencil<2>({{1.2, -0.4}, {-1, 0}, {1, 0}})));
+      expect_derivatives_match_fd<2>(
+        ContactKind::point_edge, rigid_motion<2>(make_stencil<2>({{-1.5, 0.4}, {-1, 0}, {1, 0}})));
+      expect_derivatives_match_fd<2>(
+        ContactKind::point_edge, rigid_motion<2>(make_stencil<2>({{1.2, -0.4}, {-1, 0}, {1, 0}})));
     }
 }
 
@@ -210,14 +193,6 @@ TEST(DistanceKernels, KernelsDirectlyWithDualNumbers)
   constexpr int N    = 12;
   using Dual         = ritr::SecondOrderDual<N>;
   const auto check = [](const auto &f) {
-    Eigen::Matrix<double, N, 1> x = Eigen::Matrix<double, N, 1>::Zero();
-    for (int i = 0; i < N; ++i)
-      x[i] = uniform();
-    KernelStencil<Dual, 3> xd;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k)
-        xd[i][k] = Dual::variable(3 * i + k, x[3 * i + k]);
-    const Dual d = f(xd);
     const auto value = [&](const Eigen::Matrix<double, N, 1> &y) {
       KernelStencil<Dual, 3> yd;
       for (int i = 0; i < 4; ++i)
@@ -225,16 +200,19 @@ TEST(DistanceKernels, KernelsDirectlyWithDualNumbers)
           yd[i][k] = Dual::variable(3 * i + k, y[3 * i + k]);
       return f(yd);
     };
-    const double h = 1e-6;
+    Eigen::Matrix<double, N, 1> x = Eigen::Matrix<double, N, 1>::Zero();
+    for (int i = 0; i < N; ++i)
+      x[i] = uniform();
+    const Dual                        d    = value(x);
+    const double                      h    = 1e-6;
+    const Eigen::Matrix<double, N, 1> g_fd = fd_gradient(
+      [&](const Eigen::VectorXd &y) { return value(y).value; }, x, h);
+    const Eigen::Matrix<double, N, N> H_fd = fd_jacobian(
+      [&](const Eigen::VectorXd &y) { return Eigen::VectorXd(value(y).grad); }, x, h);
     for (int i = 0; i < N; ++i)
       {
-        Eigen::Matrix<double, N, 1> xp = x, xm = x;
-        xp[i] += h, xm[i] -= h;
-        const Dual   dp = value(xp), dm = value(xm);
-        const double gi = (dp.value - dm.value) / (2 * h);
-        EXPECT_NEAR(d.grad[i], gi, 1e-5 * std::max(1.0, d.grad.norm()));
-        EXPECT_LE((d.hess.col(i) - (dp.grad - dm.grad) / (2 * h)).norm(),
-                  1e-5 * std::max(1.0, d.hess.norm()));
+        EXPECT_NEAR(d.grad[i], g_fd[i], 1e-5 * std::max(1.0, d.grad.norm()));
+        EXPECT_LE((d.hess.col(i) - H_fd.col(i)).norm(), 1e-5 * std::max(1.0, d.hess.norm()));
       }
   };
   for (int trial = 0; trial < 5; ++trial)
@@ -266,9 +244,9 @@ TEST(Distance2D, PointEdgeRegions)
 {
   for (int trial = 0; trial < 10; ++trial)
     {
-      const auto left  = rigid_motion<2>(stencil<2>({{-1.4, 0.3}, {-1, 0}, {1, 0}}));
-      const auto mid   = rigid_motion<2>(stencil<2>({{0.2, -0.3}, {-1, 0}, {1, 0}}));
-      const auto right = rigid_motion<2>(stencil<2>({{1.3, 0.6}, {-1, 0}, {1, 0}}));
+      const auto left  = rigid_motion<2>(make_stencil<2>({{-1.4, 0.3}, {-1, 0}, {1, 0}}));
+      const auto mid   = rigid_motion<2>(make_stencil<2>({{0.2, -0.3}, {-1, 0}, {1, 0}}));
+      const auto right = rigid_motion<2>(make_stencil<2>({{1.3, 0.6}, {-1, 0}, {1, 0}}));
       expect_class<2>(ContactKind::point_edge, left, DistanceType::point_point, {0, 1});
       expect_class<2>(ContactKind::point_edge, mid, DistanceType::point_line, {0, 1, 2});
       expect_class<2>(ContactKind::point_edge, right, DistanceType::point_point, {0, 2});
@@ -285,13 +263,8 @@ TEST(Distance2D, PointEdgeAgainstSampling)
   for (int trial = 0; trial < 200; ++trial)
     {
       const Vec<2> p = random_vector<2>(), a = random_vector<2>(), b = random_vector<2>();
-      double       best = 1e300;
-      for (int i = 0; i <= 20000; ++i)
-        best = std::min(best, (p - a - (b - a) * (i / 20000.0)).squaredNorm());
-      const double d = point_edge_distance_sqr<2>(p, a, b);
-      EXPECT_LE(d, best + 1e-14);
-      EXPECT_NEAR(std::sqrt(d), std::sqrt(best), 1e-4);
-      EXPECT_NEAR(d, distance_sqr<2>(ContactKind::point_edge, stencil<2>({p, a, b})), 1e-15);
+      const double d = expect_point_edge_matches_sampling<2>(p, a, b);
+      EXPECT_NEAR(d, distance_sqr<2>(ContactKind::point_edge, make_stencil<2>({p, a, b})), 1e-15);
     }
 }
 
@@ -302,12 +275,7 @@ TEST(Distance3D, PointEdgeAgainstSampling)
   for (int trial = 0; trial < 200; ++trial)
     {
       const Vec<3> p = random_vector<3>(), a = random_vector<3>(), b = random_vector<3>();
-      double       best = 1e300;
-      for (int i = 0; i <= 20000; ++i)
-        best = std::min(best, (p - a - (b - a) * (i / 20000.0)).squaredNorm());
-      const double d = point_edge_distance_sqr<3>(p, a, b);
-      EXPECT_LE(d, best + 1e-14);
-      EXPECT_NEAR(std::sqrt(d), std::sqrt(best), 1e-4);
+      expect_point_edge_matches_sampling<3>(p, a, b);
     }
 }
 
@@ -336,11 +304,9 @@ TEST(Distance3D, PointTriangleRegions)
   for (int trial = 0; trial < 5; ++trial)
     for (const auto &c : cases)
       {
-        const auto x = rigid_motion<3>(stencil<3>({c.p, t0, t1, t2}));
-        const auto cls = classify<3>(ContactKind::point_triangle, x);
-        EXPECT_EQ(static_cast<int>(cls.type), static_cast<int>(c.type)) << c.p.transpose();
-        for (std::size_t i = 0; i < c.slots.size(); ++i)
-          EXPECT_EQ(cls.slots[i], c.slots[i]) << c.p.transpose();
+        SCOPED_TRACE(c.p.transpose());
+        const auto x = rigid_motion<3>(make_stencil<3>({c.p, t0, t1, t2}));
+        expect_class<3>(ContactKind::point_triangle, x, c.type, c.slots);
         EXPECT_NEAR(distance_sqr<3>(ContactKind::point_triangle, x), c.d, 1e-12);
         expect_derivatives_match_fd<3>(ContactKind::point_triangle, x);
       }
@@ -400,11 +366,9 @@ TEST(Distance3D, EdgeEdgeRegions)
   for (int trial = 0; trial < 5; ++trial)
     for (const auto &c : cases)
       {
-        const auto x   = rigid_motion<3>(stencil<3>({c.a0, c.a1, b0, b1}));
-        const auto cls = classify<3>(ContactKind::edge_edge, x);
-        EXPECT_EQ(static_cast<int>(cls.type), static_cast<int>(c.type)) << c.a0.transpose();
-        for (std::size_t i = 0; i < c.slots.size(); ++i)
-          EXPECT_EQ(cls.slots[i], c.slots[i]) << c.a0.transpose();
+        SCOPED_TRACE(c.a0.transpose());
+        const auto x = rigid_motion<3>(make_stencil<3>({c.a0, c.a1, b0, b1}));
+        expect_class<3>(ContactKind::edge_edge, x, c.type, c.slots);
         const double d = distance_sqr<3>(ContactKind::edge_edge, x);
         if (c.d >= 0)
           EXPECT_NEAR(d, c.d, 1e-12);
@@ -424,7 +388,7 @@ TEST(Distance3D, EdgeEdgeNearlyParallel)
       const double eps = std::pow(10.0, -uniform(3, 9));
       const Vec<3> a0(-1, -eps, 0.2), a1(1, eps, 0.2), b0(-0.9, 0.9 * eps, 0),
                    b1(1.1, -1.1 * eps, 0);
-      const auto   x = rigid_motion<3>(stencil<3>({a0, a1, b0, b1}));
+      const auto   x = rigid_motion<3>(make_stencil<3>({a0, a1, b0, b1}));
       // The lines cross in projection inside both edges: the gap between the planes z = 0.2
       // and z = 0 is the exact distance.
       const auto cls = classify<3>(ContactKind::edge_edge, x);
@@ -434,7 +398,7 @@ TEST(Distance3D, EdgeEdgeNearlyParallel)
       // Lines crossing (in projection) at x = -1, outside edge c: the minimum is at the end
       // c0 of edge c.
       const Vec<3> c0(0, eps, 0.2), c1(1, 2 * eps, 0.2), e0(-0.9, 0, 0), e1(1.1, 0, 0);
-      const auto   y = rigid_motion<3>(stencil<3>({c0, c1, e0, e1}));
+      const auto   y = rigid_motion<3>(make_stencil<3>({c0, c1, e0, e1}));
       EXPECT_NEAR(distance_sqr<3>(ContactKind::edge_edge, y), 0.04 + eps * eps, 1e-14);
     }
 }
@@ -482,13 +446,13 @@ TEST(Distance3D, RandomConfigurationsMatchFiniteDifferences)
 TEST(Distance3D, ClosestPointParameters)
 {
   const Vec<3> b0(-1, 0, 0), b1(1, 0, 0);
-  const auto   x   = stencil<3>({{0.2, -1, 0.3}, {0.2, 1, 0.3}, b0, b1});
+  const auto   x   = make_stencil<3>({{0.2, -1, 0.3}, {0.2, 1, 0.3}, b0, b1});
   const auto   cls = classify<3>(ContactKind::edge_edge, x);
   const auto   prm = closest_point_parameters<3>(cls, x);
   EXPECT_NEAR(prm[0], 0.5, 1e-14);
   EXPECT_NEAR(prm[1], 0.6, 1e-14);
 
-  const auto y = stencil<3>({{0.2, 0.3, 0.7}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const auto y = make_stencil<3>({{0.2, 0.3, 0.7}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   const auto c2 = classify<3>(ContactKind::point_triangle, y);
   ASSERT_EQ(c2.type, DistanceType::point_plane);
   const auto q = closest_point_parameters<3>(c2, y);

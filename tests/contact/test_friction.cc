@@ -4,124 +4,21 @@
 #include <ritr/contact/barrier.h>
 #include <ritr/contact/friction.h>
 
+#include "contact_test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
-#include <random>
-
 using namespace ritr::contact;
+using namespace ritr::contact::test_support;
+
+const std::mt19937::result_type ritr::contact::test_support::rng_seed = 31;
 
 namespace
 {
-  template <int dim>
-  using Vec = Eigen::Matrix<double, dim, 1>;
-
-  std::mt19937 &rng()
-  {
-    static std::mt19937 gen(31);
-    return gen;
-  }
-  double uniform(const double a = -1.0, const double b = 1.0)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng());
-  }
-
-  template <int dim>
-  struct Scene
-  {
-    CollisionSurface<dim> surface;
-    std::vector<Vec<dim>> points;
-
-    int add_vertex(const Vec<dim> &x, const bool obstacle)
-    {
-      points.push_back(x);
-      surface.is_obstacle.push_back(obstacle);
-      surface.body_id.push_back(0);
-      return surface.n_vertices++;
-    }
-    Eigen::MatrixXd V() const
-    {
-      Eigen::MatrixXd M(points.size(), dim);
-      for (std::size_t i = 0; i < points.size(); ++i)
-        M.row(i) = points[i].transpose();
-      return M;
-    }
-  };
-
-  Scene<2> scene_2d()
-  {
-    Scene<2> s;
-    for (const auto &[cx, cy, r, n, obstacle] :
-         {std::tuple<double, double, double, int, bool>{0, 0, 1, 12, false},
-          {2.1, 0.1, 1, 9, false},
-          {1.0, 1.75, 0.8, 7, true}})
-      {
-        const double phase = uniform(0, 6.28);
-        const int    first = s.surface.n_vertices;
-        for (int i = 0; i < n; ++i)
-          {
-            const double a = phase + 2 * M_PI * i / n;
-            s.add_vertex(Vec<2>(cx, cy) + r * (1 + 0.05 * uniform()) * Vec<2>(std::cos(a), std::sin(a)),
-                         obstacle);
-          }
-        for (int i = 0; i < n; ++i)
-          s.surface.edges.push_back({{first + i, first + (i + 1) % n}});
-      }
-    return s;
-  }
-
-  void add_octahedron(Scene<3> &s, const Vec<3> &center, const double radius)
-  {
-    const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(uniform(0, 6.28), Vec<3>(uniform(), uniform(), uniform()).normalized())
-        .toRotationMatrix();
-    const int first = s.surface.n_vertices;
-    for (int k = 0; k < 3; ++k)
-      for (const double sign : {1.0, -1.0})
-        {
-          Vec<3> p = Vec<3>::Zero();
-          p[k]     = sign * radius * (1 + 0.1 * uniform());
-          s.add_vertex(center + R * p, false);
-        }
-    const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                             {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-    for (const auto &f : faces)
-      s.surface.faces.push_back({{first + f[0], first + f[1], first + f[2]}});
-  }
-
-  Scene<3> scene_3d()
-  {
-    Scene<3> s;
-    add_octahedron(s, Vec<3>(0, 0, 0), 1.0);
-    add_octahedron(s, Vec<3>(1.35, 0.2, 0.3), 0.7);
-    const int a = s.add_vertex(Vec<3>(-3, -3, -0.95), true);
-    const int b = s.add_vertex(Vec<3>(3, -3, -0.95), true);
-    const int c = s.add_vertex(Vec<3>(3, 3, -0.95), true);
-    const int d = s.add_vertex(Vec<3>(-3, 3, -0.95), true);
-    s.surface.faces.push_back({{a, b, c}});
-    s.surface.faces.push_back({{a, c, d}});
-    s.surface.edges = edges_of_faces(s.surface.faces);
-    return s;
-  }
-
-  Eigen::MatrixXd dense(const std::vector<Eigen::Triplet<double>> &t, const int n)
-  {
-    Eigen::SparseMatrix<double> H(n, n);
-    H.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(H);
-  }
-
-  template <int dim>
-  Eigen::MatrixXd perturbed(const Eigen::MatrixXd &V, const int i, const double h)
-  {
-    Eigen::MatrixXd W = V;
-    W(i / dim, i % dim) += h;
-    return W;
-  }
-
   template <int dim>
   std::vector<double> tangential_norms(const std::vector<FrictionConstraint<dim>> &fr,
                                        const Eigen::MatrixXd &V, const Eigen::MatrixXd &V0)
@@ -137,6 +34,16 @@ namespace
     return y;
   }
 
+  // Largest Coulomb force bound mu lambda over the friction constraints (0 if none).
+  template <int dim>
+  double max_friction_force(const std::vector<FrictionConstraint<dim>> &fr)
+  {
+    double lambda_max = 0;
+    for (const auto &fc : fr)
+      lambda_max = std::max(lambda_max, fc.mu * fc.normal_force);
+    return lambda_max;
+  }
+
   // hessian_scale: natural size of the Hessian (it vanishes identically for 2D sliding,
   // where f0(|u|) = |u| is linear on each side, so ||H|| alone is no reference there).
   template <int dim>
@@ -144,26 +51,11 @@ namespace
                                             const Eigen::MatrixXd &V, const Eigen::MatrixXd &V0,
                                             const double eps, const double hessian_scale)
   {
-    const int             n = static_cast<int>(V.size());
-    const Eigen::VectorXd g = friction_gradient<dim>(fr, V, V0, eps);
-    const Eigen::MatrixXd H = dense(friction_hessian<dim>(fr, V, V0, eps, false), n);
-    Eigen::VectorXd       g_fd(n);
-    Eigen::MatrixXd       H_fd(n, n);
-    const double          h = 1e-7;
-    for (int i = 0; i < n; ++i)
-      {
-        const auto Vp = perturbed<dim>(V, i, h), Vm = perturbed<dim>(V, i, -h);
-        g_fd[i] = (friction_energy<dim>(fr, Vp, V0, eps) - friction_energy<dim>(fr, Vm, V0, eps)) /
-                  (2 * h);
-        H_fd.col(i) =
-          (friction_gradient<dim>(fr, Vp, V0, eps) - friction_gradient<dim>(fr, Vm, V0, eps)) /
-          (2 * h);
-      }
-    EXPECT_GT(g.norm(), 0.0);
-    EXPECT_LE((g - g_fd).norm(), 1e-5 * g.norm()) << "g    = " << g.transpose() << "\ng_fd = "
-                                                  << g_fd.transpose();
-    EXPECT_LE((H - H_fd).norm(), 1e-5 * std::max(H.norm(), hessian_scale));
-    EXPECT_LE((H - H.transpose()).norm(), 1e-12 * H.norm());
+    expect_assembled_derivatives_match_fd(
+      [&](const Eigen::MatrixXd &W) { return friction_energy<dim>(fr, W, V0, eps); },
+      [&](const Eigen::MatrixXd &W) { return friction_gradient<dim>(fr, W, V0, eps); },
+      [&](const Eigen::MatrixXd &W) { return friction_hessian<dim>(fr, W, V0, eps, false); }, V,
+      1e-5, hessian_scale);
   }
 
   // Both regimes: all |u| well below eps_v h, and all well above.
@@ -172,11 +64,7 @@ namespace
                             const double dhat)
   {
     const auto cs = build_constraints<dim>(s, V_lag, V_lag, dhat);
-    ConstraintWeights w;
-    for (int i = 0; i < s.n_vertices; ++i)
-      w.vertex_weights.push_back(uniform(0.5, 2));
-    for (std::size_t i = 0; i < s.edges.size(); ++i)
-      w.edge_weights.push_back(uniform(0.5, 2));
+    const auto w  = random_weights(s.n_vertices, static_cast<int>(s.edges.size()));
     const auto fr = build_friction_constraints<dim>(cs, V_lag, dhat, 10.0, w, 0.4);
     ASSERT_GT(fr.size(), 2u);
 
@@ -189,10 +77,7 @@ namespace
       const Eigen::MatrixXd V   = V_lag + 0.01 * dV;
       const auto            ys  = tangential_norms<dim>(fr, V, V_lag);
       const double          eps = 3.0 * *std::max_element(ys.begin(), ys.end());
-      double                lambda_max = 0;
-      for (const auto &fc : fr)
-        lambda_max = std::max(lambda_max, fc.mu * fc.normal_force);
-      expect_friction_derivatives_match_fd<dim>(fr, V, V_lag, eps, lambda_max / eps);
+      expect_friction_derivatives_match_fd<dim>(fr, V, V_lag, eps, max_friction_force(fr) / eps);
     }
     // Sliding regime: eps a hundredth of the smallest |u|.
     {
@@ -201,10 +86,7 @@ namespace
       const double          y_min = *std::min_element(ys.begin(), ys.end());
       const double          eps = 0.01 * y_min;
       ASSERT_GT(eps, 0.0);
-      double lambda_max = 0;
-      for (const auto &fc : fr)
-        lambda_max = std::max(lambda_max, fc.mu * fc.normal_force);
-      expect_friction_derivatives_match_fd<dim>(fr, V, V_lag, eps, lambda_max / y_min);
+      expect_friction_derivatives_match_fd<dim>(fr, V, V_lag, eps, max_friction_force(fr) / y_min);
     }
   }
 } // namespace

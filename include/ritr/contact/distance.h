@@ -23,6 +23,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <initializer_list>
 #include <limits>
 
 namespace ritr::contact
@@ -69,6 +70,18 @@ namespace ritr::contact
   // edge-edge classification (the closest pair then lies on the boundary of the parameter
   // square; a line-line formula would divide by ~0).
   constexpr double parallel_threshold = 1e-20;
+
+  // The stencil vector of the given points (at most stencil_size<dim>), stacked vertex-major;
+  // slots not given are zero.
+  template <int dim>
+  StencilVector<dim> make_stencil(std::initializer_list<Eigen::Matrix<double, dim, 1>> points)
+  {
+    StencilVector<dim> x = StencilVector<dim>::Zero();
+    int                i = 0;
+    for (const auto &p : points)
+      x.template segment<dim>(dim * i++) = p;
+    return x;
+  }
 
   // Which feature pair realises the distance. kind must be valid for dim.
   template <int dim>
@@ -163,22 +176,30 @@ namespace ritr::contact
         }
     }
 
+    // (w.n)^2 / |n|^2: the squared length of the component of w along n, i.e. the squared
+    // distance between the parallel planes with normal n through the two ends of w.
+    template <typename S>
+    S normal_component_sqr(const KernelPoint<S, 3> &w, const KernelPoint<S, 3> &n)
+    {
+      const S s = dot<S, 3>(w, n);
+      return s * s / dot<S, 3>(n, n);
+    }
+
     template <typename S>
     S point_plane_sqr(const KernelPoint<S, 3> &p, const KernelPoint<S, 3> &a,
                       const KernelPoint<S, 3> &b, const KernelPoint<S, 3> &c)
     {
       const auto n = cross<S>(sub<S, 3>(b, a), sub<S, 3>(c, a));
-      const S    s = dot<S, 3>(sub<S, 3>(p, a), n);
-      return s * s / dot<S, 3>(n, n);
+      return normal_component_sqr<S>(sub<S, 3>(p, a), n);
     }
 
+    // The lines lie in parallel planes with normal ea x eb.
     template <typename S>
     S line_line_sqr(const KernelPoint<S, 3> &a0, const KernelPoint<S, 3> &a1,
                     const KernelPoint<S, 3> &b0, const KernelPoint<S, 3> &b1)
     {
       const auto n = cross<S>(sub<S, 3>(a1, a0), sub<S, 3>(b1, b0));
-      const S    s = dot<S, 3>(sub<S, 3>(b0, a0), n);
-      return s * s / dot<S, 3>(n, n);
+      return normal_component_sqr<S>(sub<S, 3>(b0, a0), n);
     }
   } // namespace kernels
 
