@@ -181,6 +181,22 @@ namespace ritr
       return mesh;
     }
 
+    // Whether two orderings of the same facet's nodes are even permutations of each other.
+    template <int dim>
+    bool same_orientation(const std::array<unsigned int, dim> &a, const std::array<unsigned int, dim> &b)
+    {
+      // Segments: only the identity. Triangles: the even permutations are the rotations.
+      for (int shift = 0; shift < (dim == 3 ? 3 : 1); ++shift)
+        {
+          bool equal = true;
+          for (int k = 0; k < dim; ++k)
+            equal &= a[k] == b[(k + shift) % dim];
+          if (equal)
+            return true;
+        }
+      return false;
+    }
+
     // Appends `part` to `mesh`, offsetting node indices and body ids.
     template <int dim>
     void append_mesh(SimplexMesh<dim> &mesh, const SimplexMesh<dim> &part)
@@ -239,6 +255,11 @@ namespace ritr
           auto key = facet;
           std::sort(key.begin(), key.end());
           auto &entry = facets[key];
+          // Two positively oriented cells on opposite sides of a facet see it with opposite
+          // orientations; the same orientation twice, or a third cell, means that cells
+          // overlap (a folded or inverted element in the input).
+          if (dim > 1 && (entry.first >= 2 || (entry.first == 1 && same_orientation<dim>(entry.second, facet))))
+            throw std::runtime_error("the mesh has inverted (folded) elements");
           entry.first += 1;
           entry.second = facet;
         }

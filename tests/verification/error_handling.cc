@@ -104,3 +104,12 @@ TEST(ErrorHandling, NonConvergenceKeepsWrittenSteps)
   EXPECT_TRUE(std::filesystem::exists("output/errors/no_convergence/solution-00000.vtu"));
   EXPECT_TRUE(std::filesystem::exists("output/errors/no_convergence/summary.json"));
 }
+TEST(ErrorHandling, FoldedElements)
+{
+  // Three triangles around node 1; the last one overlaps the second (folded mesh).
+  write_file("output/errors/folded.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n"
+                                         "3 1 1 0\n4 0 1 0\n5 0.9 0.5 0\n$EndNodes\n$Elements\n3\n"
+                                         "1 2 2 0 1 1 2 3\n2 2 2 0 1 1 3 4\n3 2 2 0 1 1 3 5\n$EndElements\n");
+  expect_input_error("folded", "", "inverted (folded) elements", "set shape = rectangle",
+                     "set shape = file\n  set file = folded.msh");
+}
