@@ -400,6 +400,17 @@ namespace ritr::transfer
   }
 
   template <int dim>
+  Eigen::VectorXd TransferOperator<dim>::scatter_cell_vectors(const std::vector<double> &local) const
+  {
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(n_nodes_ * dim);
+    for (std::size_t c = 0; c < cells_.size(); ++c)
+      for (int a = 0; a <= dim; ++a)
+        for (int k = 0; k < dim; ++k)
+          g[std::size_t(cells_[c][a]) * dim + k] += local[c * n_cell_dofs + a * dim + k];
+    return g;
+  }
+
+  template <int dim>
   Eigen::VectorXd TransferOperator<dim>::gradient_x(const Eigen::VectorXd &y) const
   {
     check_ready("gradient_x");
@@ -410,12 +421,7 @@ namespace ritr::transfer
       cell_terms<false, false, false, true, false>(c, nullptr, field, terms);
       std::copy(terms.grad_x.data(), terms.grad_x.data() + n_cell_dofs, &local[c * n_cell_dofs]);
     });
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(n_nodes_ * dim);
-    for (std::size_t c = 0; c < cells_.size(); ++c)
-      for (int a = 0; a <= dim; ++a)
-        for (int k = 0; k < dim; ++k)
-          g[std::size_t(cells_[c][a]) * dim + k] += local[c * n_cell_dofs + a * dim + k];
-    return g;
+    return scatter_cell_vectors(local);
   }
 
   template <int dim>
@@ -430,12 +436,7 @@ namespace ritr::transfer
       cell_terms<false, true, false, false, false>(c, &x, field, terms);
       std::copy(terms.grad_u.data(), terms.grad_u.data() + n_cell_dofs, &local[c * n_cell_dofs]);
     });
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(n_nodes_ * dim);
-    for (std::size_t c = 0; c < cells_.size(); ++c)
-      for (int a = 0; a <= dim; ++a)
-        for (int k = 0; k < dim; ++k)
-          g[std::size_t(cells_[c][a]) * dim + k] += local[c * n_cell_dofs + a * dim + k];
-    return g;
+    return scatter_cell_vectors(local);
   }
 
   template <int dim>

@@ -19,4 +19,17 @@ namespace ritr::test_support
     s.contact.enabled  = false;
     return s;
   }
+  // A static rigid plane obstacle (a wall point in 1D) through `point` with normal `normal`.
+  inline ObstacleScene plane_obstacle(const int dim, const std::vector<double> &point,
+                                      const std::vector<double> &normal, const double size = 20)
+  {
+    ObstacleScene plane;
+    plane.type           = "plane";
+    plane.point          = point;
+    plane.normal         = normal;
+    plane.size           = {size, size, size};
+    plane.translation    = dim == 1 ? "0" : dim == 2 ? "0;0" : "0;0;0";
+    plane.rotation_angle = "0";
+    return plane;
+  }
 } // namespace ritr::test_support

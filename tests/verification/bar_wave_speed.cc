@@ -25,13 +25,7 @@ TEST(BarWaveSpeed, ContactTimeIsTwoLengthsOverWaveSpeed)
   s.end_time                        = 4e-3;
   s.contact.enabled                 = true;
   s.contact.dhat                    = 1e-5;
-  ObstacleScene wall;
-  wall.type   = "plane";
-  wall.point  = {0, 0, 0};
-  wall.normal = {1, 0, 0};
-  wall.translation = "0";
-  wall.rotation_angle = "0";
-  s.obstacles.push_back(wall);
+  s.obstacles.push_back(test_support::plane_obstacle(1, {0, 0, 0}, {1, 0, 0}));
   Simulation<1> sim(s);
 
   double first_contact = -1, last_contact = -1;

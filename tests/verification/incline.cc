@@ -30,15 +30,7 @@ namespace
     s.contact.epsilon_v               = 1e-4;
     s.contact.friction_iterations     = 4;
     s.solver.newton_tolerance         = 1e-6;
-    ObstacleScene ground;
-    ground.type           = "plane";
-    ground.point          = {0, 0, 0};
-    ground.normal         = {0, 1, 0};
-    ground.size           = {20, 20, 20};
-    ground.translation    = "0;0";
-    ground.rotation_angle = "0";
-    s.obstacles.push_back(ground);
-    // Let the block settle on the ground first without tilt: start from rest on it.
+    s.obstacles.push_back(test_support::plane_obstacle(2, {0, 0, 0}, {0, 1, 0}));
     Simulation<2> sim(s);
     for (unsigned int i = 0; i < s.n_steps(); ++i)
       sim.advance();

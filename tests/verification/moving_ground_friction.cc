@@ -27,13 +27,8 @@ TEST(MovingGroundFriction, BlockIsDraggedAtMuGThenRidesAlong)
   s.contact.friction_coefficient    = mu;
   s.contact.epsilon_v               = 1e-3;
   s.contact.friction_iterations     = 3;
-  ObstacleScene ground;
-  ground.type           = "plane";
-  ground.point          = {0, 0, 0};
-  ground.normal         = {0, 1, 0};
-  ground.size           = {40, 40, 40};
-  ground.translation    = std::to_string(V) + " * t; 0";
-  ground.rotation_angle = "0";
+  ObstacleScene ground = test_support::plane_obstacle(2, {0, 0, 0}, {0, 1, 0}, 40);
+  ground.translation   = std::to_string(V) + " * t; 0";
   s.obstacles.push_back(ground);
   Simulation<2> sim(s);
 

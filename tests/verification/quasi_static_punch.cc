@@ -23,12 +23,10 @@ TEST(QuasiStaticPunch, TopFollowsThePunch)
   s.dirichlet.push_back(DirichletScene{{}, "1e-9 - y", "0;0"});
   s.contact.enabled = true;
   s.contact.dhat    = 1e-3;
-  ObstacleScene punch;
-  punch.type           = "punch";
-  punch.point          = {0, 0.6 + 2e-3, 0};
-  punch.size           = {2, 0.2, 1};
-  punch.translation    = "0; -0.05 * t";
-  punch.rotation_angle = "0";
+  ObstacleScene punch = test_support::plane_obstacle(2, {0, 0.6 + 2e-3, 0}, {0, 1, 0});
+  punch.type          = "punch";
+  punch.size          = {2, 0.2, 1};
+  punch.translation   = "0; -0.05 * t";
   s.obstacles.push_back(punch);
   Simulation<2> sim(s);
   for (unsigned int i = 0; i < s.n_steps(); ++i)

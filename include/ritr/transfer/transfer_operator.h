@@ -101,6 +101,8 @@ namespace ritr::transfer
     Eigen::VectorXd project(const Eigen::VectorXd &y, const Eigen::VectorXd &u);
 
   private:
+    // Sums per-cell vectors (n_cell_dofs entries per cell, in cell order) into nodal numbering.
+    Eigen::VectorXd scatter_cell_vectors(const std::vector<double> &local) const;
     struct OldField; // per old cell: Y(X) = K X + k for the current y
     struct CellTerms;
     std::vector<OldField> old_field(const Eigen::VectorXd &y) const;
