@@ -19,7 +19,9 @@ namespace ritr
   template <int dim>
   double IncrementalPotential<dim>::value(const Eigen::VectorXd &z)
   {
-    const double bulk = bulk_.value(body_positions(z), reference_);
+    double bulk = bulk_.value(body_positions(z), reference_);
+    if (linear_term_.size() > 0)
+      bulk += linear_term_.dot(z.head(linear_term_.size()));
     if (!std::isfinite(bulk) || !contact_)
       return bulk;
     return bulk + contact_->value(z);
@@ -32,6 +34,8 @@ namespace ritr
     Eigen::VectorXd gb = Eigen::VectorXd::Zero(reference_.size());
     bulk_.add_gradient(body_positions(z), reference_, gb);
     g.head(gb.size()) = gb;
+    if (linear_term_.size() > 0)
+      g.head(linear_term_.size()) += linear_term_;
     return g;
   }
 

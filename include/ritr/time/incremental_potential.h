@@ -26,6 +26,10 @@ namespace ritr
       previous_distance_ = std::numeric_limits<double>::infinity();
     }
 
+    // A term l^T x added to the objective (r-adaptivity: the transferred inertia target
+    // -rho A_t(u) x_pred, which is linear in x for a fixed candidate mesh u).
+    void set_linear_term(const Eigen::VectorXd &l) { linear_term_ = l; }
+
     void begin_iteration(const Eigen::VectorXd &z) override;
     double value(const Eigen::VectorXd &z) override;
     void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) override;
@@ -42,6 +46,7 @@ namespace ritr
     BulkEnergy<dim>       &bulk_;
     ContactPotential<dim> *contact_;
     const Eigen::VectorXd &reference_;
+    Eigen::VectorXd        linear_term_;
     bool                   adaptive_          = false;
     double                 kappa_max_         = 0;
     double                 bbox_diagonal_     = 1;
