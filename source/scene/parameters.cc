@@ -94,6 +94,13 @@ namespace ritr
       prm.declare_entry("friction iterations", "1", Patterns::Integer(1), "Lagged friction updates per step.");
       prm.declare_entry("self contact", "true", Patterns::Bool(), "Contact within one body and between bodies.");
       prm.leave_subsection();
+      prm.enter_subsection("Adaptivity");
+      prm.declare_entry("enabled", "false", Patterns::Bool(), "Optimal r-adaptive in-timestep remeshing: every step also optimises the reference node positions (for now: 1D dynamics without contact or Dirichlet conditions, one material).");
+      prm.declare_entry("hessian", "truncated", Patterns::Selection("truncated|full"), "Outer Hessian: truncated (per-cell PSD blocks of d2R/du2, paper eq. 23) or full (dense Schur complement with the response of x; small meshes).");
+      prm.declare_entry("epsilon r", "1e-6", Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
+      prm.declare_entry("sliding tolerance", "1e-6", Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
+      prm.declare_entry("max iterations", "100", Patterns::Integer(1), "Outer iterations per step.");
+      prm.leave_subsection();
       prm.enter_subsection("Solver");
       prm.declare_entry("newton tolerance", "1e-5", Patterns::Double(0), "Dynamics: stop when |dx|_inf / h < this (eps_e, velocity units).");
       prm.declare_entry("static tolerance", "1e-8", Patterns::Double(0), "Statics: stop when |dx|_inf < this times the bounding-box diagonal.");
@@ -358,6 +365,26 @@ namespace ritr
     if (!(s.contact.dhat > 0))
       fail("Contact/dhat", "must be positive");
     prm.leave_subsection();
+
+    prm.enter_subsection("Adaptivity");
+    s.adaptivity.enabled           = prm.get_bool("enabled");
+    s.adaptivity.hessian           = prm.get("hessian");
+    s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
+    s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
+    s.adaptivity.max_iterations    = prm.get_integer("max iterations");
+    prm.leave_subsection();
+    if (s.adaptivity.enabled)
+      {
+        // What the r-ITR step supports so far; everything else is refused up front.
+        if (s.dimension != 1)
+          fail("Adaptivity/enabled", "r-adaptivity is verified for 1D rods only so far (2D and 3D are in progress)");
+        if (!s.dynamic())
+          fail("Adaptivity/enabled", "r-adaptivity needs mode = dynamic for now");
+        if (s.contact.enabled || !s.obstacles.empty())
+          fail("Adaptivity/enabled", "r-adaptivity does not include contact yet (set Contact/enabled = false, no obstacles)");
+        if (!s.dirichlet.empty())
+          fail("Adaptivity/enabled", "r-adaptivity does not support Dirichlet conditions yet");
+      }
 
     prm.enter_subsection("Solver");
     s.solver.newton_tolerance = prm.get_double("newton tolerance");

@@ -1,3 +1,4 @@
+#include <ritr/adaptivity/transfer_quadrature.h>
 #include <ritr/common/atomic_file.h>
 #include <ritr/mesh/obstacle_reader.h>
 #include <ritr/metrics/mesh_metrics.h>
@@ -104,6 +105,29 @@ namespace ritr
         contact_ = std::make_unique<ContactPotential<dim>>(mesh_, obstacles_, settings);
       }
     potential_ = std::make_unique<IncrementalPotential<dim>>(*bulk_, contact_.get(), u_);
+    if (scene.adaptivity.enabled)
+      {
+        for (const unsigned int id : mesh_.cell_material)
+          if (id != mesh_.cell_material.front())
+            throw InputError(file + ": Adaptivity/enabled: r-adaptivity supports one material per scene for now");
+        RitrSettings settings;
+        settings.hessian           = scene.adaptivity.hessian == "full" ? RitrHessian::full : RitrHessian::truncated;
+        settings.sliding_tolerance = scene.adaptivity.sliding_tolerance;
+        settings.max_outer_iterations = scene.adaptivity.max_iterations;
+        settings.epsilon_e         = scene.solver.newton_tolerance;
+        double diagonal2           = 0;
+        for (int k = 0; k < dim; ++k)
+          {
+            const auto coordinates = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<dim>>(u_.data() + k, mesh_.n_nodes());
+            diagonal2 += std::pow(coordinates.maxCoeff() - coordinates.minCoeff(), 2);
+          }
+        settings.epsilon_r = scene.adaptivity.epsilon_r * std::sqrt(diagonal2);
+        // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
+        // integrand (kinks inside candidate cells) far better than low-order rules.
+        const transfer::SimplexQuadrature<dim> quadrature = witherden_vincent_rule<dim>(5);
+        ritr_ = std::make_unique<RitrSolver<dim>>(mesh_, scene.materials[mesh_.cell_material.front()], settings,
+                                                  quadrature);
+      }
     check_initial_state();
   }
 
@@ -277,6 +301,17 @@ namespace ritr
     bulk_->set_weights(w);
     bulk_->set_predictor(x_ + h * v_);
 
+    StepReport report;
+    report.step = step_ + 1;
+    report.time = t1;
+    if (ritr_)
+      {
+        advance_adaptive(report, w.gravity);
+        report.wall_seconds = seconds_since(start);
+        history_.push_back(report);
+        return report;
+      }
+
     Eigen::VectorXd       z       = state();
     const Eigen::VectorXd z_start = z;
     const Eigen::VectorXd targets = state_targets(t1);
@@ -303,9 +338,6 @@ namespace ritr
     settings.tolerance      = dynamic ? scene_.solver.newton_tolerance * h :
                                         scene_.solver.static_tolerance * (contact_ ? contact_->bbox_diagonal(z) : 1.0);
 
-    StepReport report;
-    report.step = step_ + 1;
-    report.time = t1;
     const unsigned int friction_iterations =
       contact_ && scene_.contact.friction_coefficient > 0 ? scene_.contact.friction_iterations : 1;
     for (unsigned int f = 0; f < friction_iterations; ++f)
@@ -347,6 +379,38 @@ namespace ritr
     report.wall_seconds = seconds_since(start);
     history_.push_back(report);
     return report;
+  }
+
+  template <int dim>
+  void Simulation<dim>::advance_adaptive(StepReport &report, const std::array<double, dim> &gravity)
+  {
+    typename RitrSolver<dim>::Result r;
+    try
+      {
+        r = ritr_->step(u_, x_, v_, scene_.time_step, gravity);
+      }
+    catch (const std::runtime_error &e)
+      {
+        throw ConvergenceError("step " + std::to_string(step_ + 1) + ": " + e.what());
+      }
+    u_ = r.u;
+    x_ = r.x;
+    v_ = r.v;
+    time_ += scene_.time_step;
+    ++step_;
+    report.energy                = r.objective;
+    report.newton_iterations     = r.inner_iterations;
+    report.outer_iterations      = r.outer_iterations;
+    report.line_search_trials    = r.line_search_trials;
+    report.min_reference_measure = std::numeric_limits<double>::max();
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      report.min_reference_measure = std::min(report.min_reference_measure, signed_cell_measure(c));
+    report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x_, u_);
+    if (!(report.min_reference_measure > 0))
+      invariant_violations_.push_back("step " + std::to_string(step_) + ": inverted reference element");
+    if (!(report.min_deformed_jacobian > 0))
+      invariant_violations_.push_back("step " + std::to_string(step_) + ": inverted element (det F = " +
+                                      std::to_string(report.min_deformed_jacobian) + ")");
   }
 
   template <int dim>
@@ -449,7 +513,7 @@ namespace ritr
       s << "{\n  \"scene\": \"" << scene_.parameter_file << "\",\n"
         << "  \"dimension\": " << dim << ",\n"
         << "  \"mode\": \"" << scene_.mode << "\",\n"
-        << "  \"adaptivity\": false,\n"
+        << "  \"adaptivity\": " << (ritr_ ? "true" : "false") << ",\n"
         << "  \"steps\": " << history_.size() << ",\n"
         << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
         << "  \"n_cells\": " << mesh_.n_cells() << ",\n"

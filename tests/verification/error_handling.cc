@@ -113,3 +113,7 @@ TEST(ErrorHandling, FoldedElements)
   expect_input_error("folded", "", "inverted (folded) elements", "set shape = rectangle",
                      "set shape = file\n  set file = folded.msh");
 }
+TEST(ErrorHandling, AdaptivityOutsideItsVerifiedScopeIsRefused)
+{
+  expect_input_error("adaptivity_2d", "subsection Adaptivity\n set enabled = true\nend\n", "Adaptivity/enabled");
+}

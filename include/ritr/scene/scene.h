@@ -49,6 +49,16 @@ namespace ritr
     bool        self_contact         = true;
   };
 
+  // Optimal r-adaptive in-timestep remeshing (paper Algorithm 1).
+  struct AdaptivityScene
+  {
+    bool        enabled           = false;
+    std::string hessian           = "truncated";  // truncated | full
+    double      epsilon_r         = 1e-6;         // on |du|_inf, in units of the mesh's size
+    double      sliding_tolerance = 1e-6;         // eps_b
+    unsigned    max_iterations    = 100;
+  };
+
   struct SolverScene
   {
     double       newton_tolerance = 1e-5;  // dynamics: on |dx|_inf / h (velocity units)
@@ -76,6 +86,7 @@ namespace ritr
     std::vector<ObstacleScene>  obstacles;
     ContactScene                contact;
     SolverScene                 solver;
+    AdaptivityScene             adaptivity;
 
     bool dynamic() const { return mode == "dynamic"; }
     unsigned int n_steps() const;

@@ -2,6 +2,7 @@
 // A simulation run: builds the mesh, materials, obstacles and boundary conditions from a
 // Scene, validates the initial state, then steps in time (implicit Euler) or load
 // (statics), writing the outputs of the output contract after every step.
+#include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/contact/contact_potential.h>
 #include <ritr/elasticity/bulk_energy.h>
 #include <ritr/scene/expression.h>
@@ -68,6 +69,7 @@ namespace ritr
     void check_initial_state() const;
     double signed_cell_measure(unsigned int cell) const;  // at the reference positions
     Eigen::VectorXd state_targets(double t) const;  // kinematic entries at time t
+    void            advance_adaptive(StepReport &report, const std::array<double, dim> &gravity);
     Eigen::VectorXd state() const;
     void write_step_output(unsigned int step);
     void write_summary(double total_seconds) const;
@@ -79,6 +81,7 @@ namespace ritr
     std::vector<contact::RigidObstacle<dim>>   obstacles_;
     std::unique_ptr<ContactPotential<dim>>     contact_;
     std::unique_ptr<IncrementalPotential<dim>> potential_;
+    std::unique_ptr<RitrSolver<dim>>           ritr_;  // with adaptivity on
     NewtonSolver                               newton_;
     std::vector<bool>                          kinematic_;  // per state entry
     std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition
