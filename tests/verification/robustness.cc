@@ -62,3 +62,9 @@ TEST(Robustness, AdaptiveRod1D)
   EXPECT_NEAR(u[1], 0.141198, 1e-4);
   EXPECT_NEAR(u[2], 0.858802, 1e-4);
 }
+
+// A gmsh body falling into a gap between gmsh obstacle blocks (meshes/wedge.msh, funnel.msh).
+TEST(Robustness, GmshWedgeDropThrough2D)
+{
+  run_scene_file(source_dir() + "/prm/wedge_drop_through.prm", "output/wedge_drop_through");
+}
