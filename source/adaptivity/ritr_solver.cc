@@ -55,11 +55,9 @@ namespace ritr
   }
 
   template <int dim>
-  double RitrSolver<dim>::objective_at(const Eigen::VectorXd &u, Eigen::VectorXd &x)
+  double RitrSolver<dim>::objective(const Eigen::VectorXd &x, const Eigen::VectorXd &u) const
   {
-    solve_inner(u, x);
-    const double e = bulk_.value(x, u) - material_.density * transfer_.value(x, predictor_);
-    return e + penalties(u, nullptr, nullptr);
+    return bulk_.value(x, u) - material_.density * transfer_.value(x, predictor_) + penalties(u, nullptr, nullptr);
   }
 
   template <int dim>
@@ -99,8 +97,7 @@ namespace ritr
     r.u = u_t;
     r.x = x_t;
     r.inner_iterations += solve_inner(r.u, r.x);
-    double objective = bulk_.value(r.x, r.u) - material_.density * transfer_.value(r.x, predictor_) +
-                       penalties(r.u, nullptr, nullptr);
+    double current = objective(r.x, r.u);
 
     std::vector<int> free_index(r.u.size(), -1);
     int              n_free = 0;
@@ -168,18 +165,17 @@ namespace ritr
             u_trial         = r.u + alpha * du;
             x_trial         = r.x;
             r.inner_iterations += solve_inner(u_trial, x_trial);
-            trial_objective = bulk_.value(x_trial, u_trial) - material_.density * transfer_.value(x_trial, predictor_) +
-                              penalties(u_trial, nullptr, nullptr);
-            if (trial_objective <= objective)
+            trial_objective = objective(x_trial, u_trial);
+            if (trial_objective <= current)
               break;
           }
-        if (!(trial_objective <= objective))
+        if (!(trial_objective <= current))
           break;  // no decrease along a descent direction: converged to round-off
         r.u       = u_trial;
         r.x       = x_trial;
-        objective = trial_objective;
+        current   = trial_objective;
       }
-    r.objective = objective;
+    r.objective = current;
     r.v         = (r.x - transfer_.project(x_t, r.u)) / h;
     return r;
   }

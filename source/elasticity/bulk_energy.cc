@@ -1,9 +1,8 @@
 #include <ritr/common/psd_projection.h>
 #include <ritr/elasticity/bulk_energy.h>
+#include <ritr/mesh/simplex_rules.h>
 
 #include <Eigen/Cholesky>
-
-#include <deal.II/base/quadrature_lib.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -18,24 +17,16 @@ namespace ritr
   const std::array<std::array<double, dim + 1>, dim + 1> &unit_mass_coefficients()
   {
     static const auto coefficients = [] {
-      std::array<std::array<double, dim + 1>, dim + 1> m{};
       // Degree-2 rule: exact for products of two linear shape functions.
-      const dealii::Quadrature<dim> q = dim == 1 ? dealii::Quadrature<dim>(dealii::QGauss<dim>(2)) :
-                                                   dealii::Quadrature<dim>(dealii::QGaussSimplex<dim>(2));
+      const auto rule = gauss_simplex_rule<dim>(2);
+      std::array<std::array<double, dim + 1>, dim + 1> m{};
       double total = 0;
-      for (unsigned int p = 0; p < q.size(); ++p)
+      for (unsigned int p = 0; p < rule.size(); ++p)
         {
-          std::array<double, dim + 1> lambda;
-          lambda[0] = 1.0;
-          for (int k = 0; k < dim; ++k)
-            {
-              lambda[k + 1] = q.point(p)[k];
-              lambda[0] -= q.point(p)[k];
-            }
-          total += q.weight(p);
+          total += rule.weights[p];
           for (int a = 0; a <= dim; ++a)
             for (int b = 0; b <= dim; ++b)
-              m[a][b] += q.weight(p) * lambda[a] * lambda[b];
+              m[a][b] += rule.weights[p] * rule.points[p][a] * rule.points[p][b];
         }
       for (auto &row : m)
         for (auto &v : row)

@@ -325,13 +325,23 @@ namespace ritr
     body.shape = "file";  // keep material ids; boundary ids are restored below
     tria.refine_global(1);
     SimplexMesh<dim> fine = extract_mesh<dim>(body, tria);
-    // Nodes keep the body part of the nodes of the coarse cell they lie in (by body id).
-    std::vector<unsigned int> part_of_body(mesh.n_bodies(), 0);
+    // Refinement keeps every coarse node, so each fine body contains coarse nodes, whose part
+    // it inherits.
+    std::map<std::vector<double>, unsigned int> part_at;
     for (unsigned int i = 0; i < mesh.n_nodes() && !mesh.node_part.empty(); ++i)
-      part_of_body[mesh.node_body[i]] = mesh.node_part[i];
+      part_at[std::vector<double>(mesh.reference.data() + i * dim, mesh.reference.data() + (i + 1) * dim)] =
+        mesh.node_part[i];
+    std::vector<unsigned int> part_of_body(fine.n_bodies(), 0);
+    for (unsigned int i = 0; i < fine.n_nodes(); ++i)
+      {
+        const auto it =
+          part_at.find(std::vector<double>(fine.reference.data() + i * dim, fine.reference.data() + (i + 1) * dim));
+        if (it != part_at.end())
+          part_of_body[fine.node_body[i]] = it->second;
+      }
     fine.node_part.resize(fine.n_nodes());
     for (unsigned int i = 0; i < fine.n_nodes(); ++i)
-      fine.node_part[i] = part_of_body.empty() ? 0 : part_of_body[std::min<unsigned>(fine.node_body[i], part_of_body.size() - 1)];
+      fine.node_part[i] = part_of_body[fine.node_body[i]];
 
     // A fine boundary facet inherits the id of the coarse facet whose plane contains it.
     for (unsigned int f = 0; f < fine.boundary_facets.size(); ++f)

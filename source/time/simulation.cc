@@ -1,6 +1,6 @@
-#include <ritr/adaptivity/transfer_quadrature.h>
 #include <ritr/common/atomic_file.h>
 #include <ritr/mesh/obstacle_reader.h>
+#include <ritr/mesh/simplex_rules.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/output/vtk_files.h>
 #include <ritr/scene/parameters.h>
@@ -365,17 +365,8 @@ namespace ritr
 
     if (contact_)
       contact_->forget_candidates();
-    report.min_distance          = contact_ ? contact_->minimum_distance(z) : std::numeric_limits<double>::infinity();
-    report.min_reference_measure = std::numeric_limits<double>::max();
-    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
-      report.min_reference_measure = std::min(report.min_reference_measure, signed_cell_measure(c));
-    report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x_, u_);
-    if (!(report.min_distance > 0))
-      invariant_violations_.push_back("step " + std::to_string(step_) + ": minimum distance " +
-                                      std::to_string(report.min_distance));
-    if (!(report.min_deformed_jacobian > 0))
-      invariant_violations_.push_back("step " + std::to_string(step_) + ": inverted element (det F = " +
-                                      std::to_string(report.min_deformed_jacobian) + ")");
+    report.min_distance = contact_ ? contact_->minimum_distance(z) : std::numeric_limits<double>::infinity();
+    check_invariants(report);
     report.wall_seconds = seconds_since(start);
     history_.push_back(report);
     return report;
@@ -402,14 +393,21 @@ namespace ritr
     report.newton_iterations     = r.inner_iterations;
     report.outer_iterations      = r.outer_iterations;
     report.line_search_trials    = r.line_search_trials;
-    report.min_reference_measure = std::numeric_limits<double>::max();
-    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
-      report.min_reference_measure = std::min(report.min_reference_measure, signed_cell_measure(c));
+    check_invariants(report);
+  }
+
+  template <int dim>
+  void Simulation<dim>::check_invariants(StepReport &report)
+  {
+    report.min_reference_measure = min_cell_measure(mesh_, u_, false);
     report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x_, u_);
+    const std::string step = "step " + std::to_string(step_) + ": ";
+    if (!(report.min_distance > 0))
+      invariant_violations_.push_back(step + "minimum distance " + std::to_string(report.min_distance));
     if (!(report.min_reference_measure > 0))
-      invariant_violations_.push_back("step " + std::to_string(step_) + ": inverted reference element");
+      invariant_violations_.push_back(step + "inverted reference element");
     if (!(report.min_deformed_jacobian > 0))
-      invariant_violations_.push_back("step " + std::to_string(step_) + ": inverted element (det F = " +
+      invariant_violations_.push_back(step + "inverted element (det F = " +
                                       std::to_string(report.min_deformed_jacobian) + ")");
   }
 

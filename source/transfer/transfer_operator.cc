@@ -440,27 +440,36 @@ namespace ritr::transfer
   }
 
   template <int dim>
+  template <typename BlockOfCell>
+  void TransferOperator<dim>::append_cell_blocks(std::vector<Triplet> &triplets, const BlockOfCell &block_of_cell) const
+  {
+    // Every cell fills its own slice, so the blocks are computed in parallel and the result
+    // does not depend on thread scheduling.
+    constexpr int     block = n_cell_dofs * n_cell_dofs;
+    const std::size_t start = triplets.size();
+    triplets.resize(start + cells_.size() * block);
+    for_each_cell(cells_.size(), [&](const std::size_t c) {
+      const CellMatrix<dim> H   = block_of_cell(c);
+      std::size_t           out = start + c * block;
+      for (int i = 0; i < n_cell_dofs; ++i)
+        for (int j = 0; j < n_cell_dofs; ++j)
+          triplets[out++] = Triplet(cells_[c][i / dim] * dim + i % dim, cells_[c][j / dim] * dim + j % dim, H(i, j));
+    });
+  }
+
+  template <int dim>
   void TransferOperator<dim>::add_hessian_u(const Eigen::VectorXd &x, const Eigen::VectorXd &y,
                                             const double scale, const bool project_psd,
                                             std::vector<Triplet> &triplets) const
   {
     check_ready("add_hessian_u");
     check_field(x, "x");
-    const auto        field = old_field(y);
-    constexpr int     block = n_cell_dofs * n_cell_dofs;
-    const std::size_t start = triplets.size();
-    triplets.resize(start + cells_.size() * block);
-    for_each_cell(cells_.size(), [&](const std::size_t c) {
+    const auto field = old_field(y);
+    append_cell_blocks(triplets, [&](const std::size_t c) {
       CellTerms terms;
       cell_terms<false, false, true, false, false>(c, &x, field, terms);
       CellMatrix<dim> H = scale * terms.hess_u;
-      if (project_psd)
-        H = project_to_psd(H);
-      std::size_t out = start + c * block;
-      for (int i = 0; i < n_cell_dofs; ++i)
-        for (int j = 0; j < n_cell_dofs; ++j)
-          triplets[out++] = Triplet(cells_[c][i / dim] * dim + i % dim,
-                                    cells_[c][j / dim] * dim + j % dim, H(i, j));
+      return project_psd ? CellMatrix<dim>(project_to_psd(H)) : H;
     });
   }
 
@@ -482,18 +491,11 @@ namespace ritr::transfer
   {
     check_ready("add_hessian_xu");
     check_field(x, "x");
-    const auto        field = old_field(y);
-    constexpr int     block = n_cell_dofs * n_cell_dofs;
-    const std::size_t start = triplets.size();
-    triplets.resize(start + cells_.size() * block);
-    for_each_cell(cells_.size(), [&](const std::size_t c) {
+    const auto field = old_field(y);
+    append_cell_blocks(triplets, [&](const std::size_t c) {
       CellTerms terms;
       cell_terms<false, false, false, false, true>(c, &x, field, terms);
-      std::size_t out = start + c * block;
-      for (int i = 0; i < n_cell_dofs; ++i)
-        for (int j = 0; j < n_cell_dofs; ++j)
-          triplets[out++] = Triplet(cells_[c][i / dim] * dim + i % dim,
-                                    cells_[c][j / dim] * dim + j % dim, scale * terms.mixed(i, j));
+      return CellMatrix<dim>(scale * terms.mixed);
     });
   }
 

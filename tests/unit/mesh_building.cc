@@ -90,6 +90,10 @@ TEST(MeshBuilding, DiskBallAndSeveralBodies)
   EXPECT_NEAR(total_measure(mesh), 2 * M_PI * 0.25, 0.02);
   EXPECT_NEAR(boundary_flux(mesh), 2 * total_measure(mesh), 1e-10);
   EXPECT_EQ(mesh.cell_material.back(), 1u);
+  // Refinement keeps which scene body each node came from.
+  const auto fine = refine_uniformly(mesh);
+  for (unsigned int i = 0; i < fine.n_nodes(); ++i)
+    EXPECT_EQ(fine.node_part[i], fine.reference[2 * i] > 1.0 ? 1u : 0u);
 
   BodyDescription ball;
   ball.shape             = "ball";

@@ -58,14 +58,12 @@ namespace ritr
     Result step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t, const Eigen::VectorXd &v_t, double h,
                 const std::array<double, dim> &gravity);
 
-    // R(x, u) for the current step (after step() set it up) with x solved at u; exposed for
-    // tests that minimise it independently.
-    double objective_at(const Eigen::VectorXd &u, Eigen::VectorXd &x);
-
   private:
     // x = argmin_x E(x, u), warm-started from x; returns the Newton iterations.
     unsigned int solve_inner(const Eigen::VectorXd &u, Eigen::VectorXd &x);
     double       penalties(const Eigen::VectorXd &u, Eigen::VectorXd *g, Triplets *h) const;
+    // R(x, u); the transfer must have been set to the candidate u.
+    double       objective(const Eigen::VectorXd &x, const Eigen::VectorXd &u) const;
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
     double       step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
 

@@ -39,18 +39,8 @@ namespace ritr
     Vec<dim> reference_node(const unsigned int i) const { return reference.template segment<dim>(i * dim); }
   };
 
-  // Cell node positions gathered from a flat position vector, one column per node.
-  template <int dim>
-  Eigen::Matrix<double, dim, dim + 1> gather_cell(const Eigen::VectorXd &positions,
-                                                  const std::array<unsigned int, dim + 1> &cell)
-  {
-    Eigen::Matrix<double, dim, dim + 1> m;
-    for (int a = 0; a <= dim; ++a)
-      m.col(a) = positions.template segment<dim>(cell[a] * dim);
-    return m;
-  }
-
-  // The same, as the nested arrays that the templated element kernels take.
+  // Node positions of a cell from a flat position vector, as the nested arrays that the
+  // templated element kernels take.
   template <int dim>
   std::array<std::array<double, dim>, dim + 1> cell_nodes(const Eigen::VectorXd &positions,
                                                           const std::array<unsigned int, dim + 1> &cell)

@@ -70,6 +70,8 @@ namespace ritr
     double signed_cell_measure(unsigned int cell) const;  // at the reference positions
     Eigen::VectorXd state_targets(double t) const;  // kinematic entries at time t
     void            advance_adaptive(StepReport &report, const std::array<double, dim> &gravity);
+    // Fills the report's mesh invariants after a step and records any violation.
+    void            check_invariants(StepReport &report);
     Eigen::VectorXd state() const;
     void write_step_output(unsigned int step);
     void write_summary(double total_seconds) const;
@@ -90,7 +92,6 @@ namespace ritr
     Eigen::VectorXd                            obstacle_positions_;  // at the current time
     double                                     time_ = 0;
     unsigned int                               step_ = 0;
-    double                                     kappa_max_ = 0;
     std::vector<StepReport>                    history_;
     std::vector<std::string>                   invariant_violations_;
     struct Outputs;

@@ -103,6 +103,9 @@ namespace ritr::transfer
   private:
     // Sums per-cell vectors (n_cell_dofs entries per cell, in cell order) into nodal numbering.
     Eigen::VectorXd scatter_cell_vectors(const std::vector<double> &local) const;
+    // Appends one n_cell_dofs x n_cell_dofs block per cell, block_of_cell(c), in nodal numbering.
+    template <typename BlockOfCell>
+    void append_cell_blocks(std::vector<Triplet> &triplets, const BlockOfCell &block_of_cell) const;
     struct OldField; // per old cell: Y(X) = K X + k for the current y
     struct CellTerms;
     std::vector<OldField> old_field(const Eigen::VectorXd &y) const;
