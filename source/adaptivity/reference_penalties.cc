@@ -58,11 +58,6 @@ namespace ritr
           continue;  // rod ends stay put
         else
           {
-            double length = 0;
-            for (const unsigned int j : neighbours[i])
-              length += (mesh.reference_node(j) - ci.anchor).norm();
-            ci.length = length / neighbours[i].size();
-
             // Facet sliding: every incident facet's normal is close to the weighted normal.
             Vec<dim> normal = Vec<dim>::Zero();
             for (const unsigned int f : facets_of[i])
@@ -106,33 +101,6 @@ namespace ritr
           }
       }
     return c;
-  }
-
-  template <int dim>
-  double sliding_penalty(const std::vector<SlidingConstraint<dim>> &c, const Eigen::VectorXd &u, const double kappa,
-                         Eigen::VectorXd *gradient, Triplets *hessian)
-  {
-    double energy = 0;
-    for (unsigned int i = 0; i < c.size(); ++i)
-      {
-        if (c[i].kind != SlidingKind::facet && c[i].kind != SlidingKind::edge)
-          continue;
-        const double   scale = kappa / (c[i].length * c[i].length);
-        const Vec<dim> r     = u.template segment<dim>(i * dim) - c[i].anchor;
-        const Vec<dim> &t    = c[i].direction;
-        // Facet: the normal component of r is penalised; edge: everything but the tangent one.
-        Eigen::Matrix<double, dim, dim> P = t * t.transpose();
-        if (c[i].kind == SlidingKind::edge)
-          P = Eigen::Matrix<double, dim, dim>::Identity() - P;
-        energy += 0.5 * scale * r.dot(P * r);
-        if (gradient)
-          gradient->template segment<dim>(i * dim) += scale * P * r;
-        if (hessian)
-          for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b)
-              hessian->emplace_back(i * dim + a, i * dim + b, scale * P(a, b));
-      }
-    return energy;
   }
 
   template <int dim>
@@ -194,8 +162,6 @@ namespace ritr
 
 #define RITR_INSTANTIATE(dim)                                                                                    \
   template std::vector<SlidingConstraint<dim>> classify_sliding<dim>(const SimplexMesh<dim> &, double);          \
-  template double sliding_penalty<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &,     \
-                                       double, Eigen::VectorXd *, Triplets *);                                   \
   template double sliding_violation<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &);  \
   template double reference_measure_barrier<dim>(const SimplexMesh<dim> &, const Eigen::VectorXd &, double,      \
                                                  double, Eigen::VectorXd *, Triplets *, bool);

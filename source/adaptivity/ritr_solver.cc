@@ -1,68 +1,117 @@
 #include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/common/psd_projection.h>
-#include <ritr/time/incremental_potential.h>
 
 #include <Eigen/Dense>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace ritr
 {
+  namespace
+  {
+    double seconds_since(const std::chrono::steady_clock::time_point start)
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    Eigen::SparseMatrix<double> to_sparse(const Triplets &t, const Eigen::Index rows, const Eigen::Index cols)
+    {
+      Eigen::SparseMatrix<double> m(rows, cols);
+      m.setFromTriplets(t.begin(), t.end());
+      return m;
+    }
+
+    // Unit vectors spanning the plane normal to n (dim - 1 of them).
+    template <int dim>
+    std::vector<Vec<dim>> tangents_of(const Vec<dim> &n)
+    {
+      if constexpr (dim == 2)
+        return {Vec<dim>(-n[1], n[0])};
+      else if constexpr (dim == 3)
+        {
+          const Vec<dim> a = n.unitOrthogonal();
+          return {a, n.cross(a).normalized()};
+        }
+      else
+        return {};
+    }
+  } // namespace
+
   template <int dim>
-  RitrSolver<dim>::RitrSolver(const SimplexMesh<dim> &mesh, const Material &material, const RitrSettings &settings,
+  RitrSolver<dim>::RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
+                              ImplicitStep<dim> &inner, const RitrSettings &settings,
                               const transfer::SimplexQuadrature<dim> &quadrature)
     : mesh_(mesh)
-    , material_(material)
+    , contact_(contact)
+    , inner_(inner)
     , settings_(settings)
-    , bulk_(mesh, std::vector<Material>(*std::max_element(mesh.cell_material.begin(), mesh.cell_material.end()) + 1,
-                                        material))
-    , transfer_(mesh.cells, quadrature)
+    , objective_(mesh, bulk, contact, quadrature, settings.inertia, settings.projection)
     , sliding_(classify_sliding(mesh, settings.sliding_tolerance))
+    , youngs_modulus_(bulk.cell_material(0).youngs_modulus)
   {
-    // Corners (and 1D rod ends) keep their reference position; every other node may move.
-    u_fixed_.assign(mesh.reference.size(), false);
+    const std::vector<bool> &kinematic = inner.kinematic();
+    Triplets                 directions;
+    Eigen::Index             m = 0;
     for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
-      if (sliding_[i].kind == SlidingKind::corner)
+      {
+        bool prescribed = false;
         for (int k = 0; k < dim; ++k)
-          u_fixed_[i * dim + k] = true;
-    w_hat_ = 0.1 * std::numeric_limits<double>::max();
+          prescribed = prescribed || kinematic[i * dim + k];
+        if (prescribed)
+          continue;  // a Dirichlet node keeps its reference position (its target depends on it)
+        std::vector<Vec<dim>> allowed;
+        const SlidingKind     kind = settings.geometric_admissibility ? sliding_[i].kind : SlidingKind::interior;
+        if (kind == SlidingKind::interior)
+          for (int k = 0; k < dim; ++k)
+            allowed.push_back(Vec<dim>::Unit(k));
+        else if (kind == SlidingKind::facet)
+          allowed = tangents_of<dim>(sliding_[i].direction);
+        else if (kind == SlidingKind::edge)
+          allowed = {sliding_[i].direction};
+        for (const auto &a : allowed)
+          {
+            for (int k = 0; k < dim; ++k)
+              if (a[k] != 0)
+                directions.emplace_back(i * dim + k, m, a[k]);
+            ++m;
+          }
+      }
+    basis_ = to_sparse(directions, mesh.reference.size(), m);
+    for (std::size_t i = 0; i < kinematic.size(); ++i)
+      if (!kinematic[i])
+        free_state_.push_back(i);
+    w_hat_ = std::numeric_limits<double>::max();
     for (const auto &cell : mesh.cells)
       w_hat_ = std::min(w_hat_, 0.1 * simplex_measure<dim, double>(cell_nodes<dim>(mesh.reference, cell)));
   }
 
   template <int dim>
-  double RitrSolver<dim>::penalties(const Eigen::VectorXd &u, Eigen::VectorXd *g, Triplets *h) const
+  bool RitrSolver<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
+                                      Result &r)
   {
-    const double kappa = settings_.penalty_stiffness > 0 ? settings_.penalty_stiffness :
-                                                           h_ * h_ * material_.youngs_modulus;
-    return sliding_penalty(sliding_, u, kappa, g, h) + reference_measure_barrier(mesh_, u, w_hat_, kappa, g, h);
-  }
-
-  template <int dim>
-  unsigned int RitrSolver<dim>::solve_inner(const Eigen::VectorXd &u, Eigen::VectorXd &x)
-  {
-    transfer_.set_candidate(u);
-    IncrementalPotential<dim> potential(bulk_, nullptr, u);
-    potential.set_linear_term(-material_.density * transfer_.gradient_x(predictor_));
-    NewtonSettings settings;
-    settings.tolerance = settings_.epsilon_e * h_;
-    const NewtonResult r =
-      newton_.minimize(potential, x, std::vector<bool>(x.size(), false), Eigen::VectorXd::Zero(x.size()), settings);
-    if (!r.converged)
-      throw std::runtime_error("r-ITR inner solve did not converge: " + r.failure);
-    return r.iterations;
-  }
-
-  template <int dim>
-  double RitrSolver<dim>::objective(const Eigen::VectorXd &x, const Eigen::VectorXd &u) const
-  {
-    return bulk_.value(x, u) - material_.density * transfer_.value(x, predictor_) + penalties(u, nullptr, nullptr);
+    const auto start = std::chrono::steady_clock::now();
+    objective_.set_candidate(u);
+    inner_.set_linear_term(objective_.linear_term());
+    bool solved = true;
+    try
+      {
+        r.inner_iterations += inner_.solve_on_mesh(u, z, targets).iterations;
+      }
+    catch (const ConvergenceError &)
+      {
+        solved = false;  // the trial mesh is rejected like one that raises R
+      }
+    r.inner_seconds += seconds_since(start);
+    return solved;
   }
 
   template <int dim>
   double RitrSolver<dim>::step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const
   {
+    if (!settings_.geometric_admissibility)
+      return 1.0;
     const auto admissible = [&](const double alpha) {
       const Eigen::VectorXd trial = u + alpha * du;
       for (const auto &cell : mesh_.cells)
@@ -78,106 +127,200 @@ namespace ritr
   }
 
   template <int dim>
-  typename RitrSolver<dim>::Result RitrSolver<dim>::step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t,
-                                                         const Eigen::VectorXd &v_t, const double h,
+  Eigen::SparseMatrix<double>
+  RitrSolver<dim>::outer_hessian(const typename RitrObjective<dim>::Derivatives &d) const
+  {
+    const Eigen::Index                n_u = basis_.rows();
+    const Eigen::SparseMatrix<double> huu = to_sparse(d.huu, n_u, n_u);
+    if (settings_.hessian == RitrHessian::truncated)
+      return basis_.transpose() * huu * basis_;
+
+    // Schur complement on the free state entries: S = H_uu - H_xu^T H_xx^{-1} H_xu.
+    const Eigen::Index n_z = d.gx.size(), n_f = free_state_.size();
+    const Eigen::MatrixXd hxx = Eigen::MatrixXd(to_sparse(d.hxx, n_z, n_z));
+    const Eigen::MatrixXd hxu = Eigen::MatrixXd(to_sparse(d.hxu, n_z, n_u));
+    Eigen::MatrixXd       hxx_f(n_f, n_f), hxu_f(n_f, n_u);
+    for (Eigen::Index a = 0; a < n_f; ++a)
+      {
+        hxu_f.row(a) = hxu.row(free_state_[a]);
+        for (Eigen::Index b = 0; b < n_f; ++b)
+          hxx_f(a, b) = hxx(free_state_[a], free_state_[b]);
+      }
+    Eigen::MatrixXd response = hxx_f.ldlt().solve(hxu_f);  // -dx/du
+    if (settings_.hessian == RitrHessian::filtered)
+      {
+        const double threshold = settings_.filter_threshold * response.cwiseAbs().maxCoeff();
+        response = (response.array().abs() < threshold).select(0.0, response);
+      }
+    const Eigen::MatrixXd dense_basis = Eigen::MatrixXd(basis_);
+    const Eigen::MatrixXd schur       = Eigen::MatrixXd(huu) - hxu_f.transpose() * response;
+    const Eigen::MatrixXd reduced     = project_to_psd(Eigen::MatrixXd(dense_basis.transpose() * schur * dense_basis));
+    return reduced.sparseView();
+  }
+
+  template <int dim>
+  double RitrSolver<dim>::solve_seconds(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs,
+                                        Eigen::VectorXd &sol)
+  {
+    const auto                  start = std::chrono::steady_clock::now();
+    Eigen::SparseMatrix<double> lower = H.template triangularView<Eigen::Lower>();
+    lower.makeCompressed();
+    cholesky_.factorize(lower);
+    sol = cholesky_.solve(rhs);
+    return seconds_since(start);
+  }
+
+  template <int dim>
+  typename RitrSolver<dim>::Result RitrSolver<dim>::step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t,
+                                                         const Eigen::VectorXd &v_t, const Eigen::VectorXd &targets,
+                                                         const double h, const bool dynamic,
                                                          const std::array<double, dim> &gravity)
   {
-    h_         = h;
-    predictor_ = x_t + h * v_t;
-    transfer_.set_old_mesh(u_t);
-    CellEnergyWeights<dim> w;
-    w.inertia   = 1.0;
-    w.potential = h * h;
-    w.gravity   = gravity;
-    bulk_.set_weights(w);
-    // The bulk term keeps only 1/2 x^T M(u) x; the predictor enters through the transfer.
-    bulk_.set_predictor(Eigen::VectorXd::Zero(x_t.size()));
+    h_       = h;
+    dynamic_ = dynamic;
+    const Eigen::Index    n_u = u_t.size();
+    const Eigen::VectorXd x_t = z_t.head(n_u);
+    const double          transfer_before = objective_.transfer_seconds();
+    objective_.begin_step(u_t, x_t, v_t.head(n_u), h, dynamic, gravity);
 
     Result r;
     r.u = u_t;
-    r.x = x_t;
-    r.inner_iterations += solve_inner(r.u, r.x);
-    double current = objective(r.x, r.u);
+    r.z = z_t;
+    // Physical admissibility at the start-of-step mesh: this also sets the contact stiffness
+    // and lags friction for the whole step.
+    {
+      const auto start = std::chrono::steady_clock::now();
+      objective_.set_candidate(u_t);
+      inner_.set_linear_term(objective_.linear_term());
+      r.inner_iterations += inner_.solve_start_of_step(u_t, r.z, z_t, targets).iterations;
+      r.inner_seconds += seconds_since(start);
+    }
+    // The measure barrier's stiffness matches the contact barrier's (paper 5.3.2); without
+    // contact it is the elastic stiffness per unit measure at the threshold w_hat.
+    double kappa_w = settings_.measure_barrier_stiffness;
+    if (kappa_w <= 0)
+      kappa_w = contact_ ? contact_->stiffness() : (dynamic ? h * h : 1.0) * youngs_modulus_ / w_hat_;
+    objective_.set_measure_barrier(settings_.geometric_admissibility ? kappa_w : 0.0, w_hat_);
+    r.initial_objective = r.objective = objective_.value(r.z, r.u);
 
-    std::vector<int> free_index(r.u.size(), -1);
-    int              n_free = 0;
-    for (Eigen::Index i = 0; i < r.u.size(); ++i)
-      if (!u_fixed_[i])
-        free_index[i] = n_free++;
-    SparseCholesky cholesky;
+    if (settings_.physical_admissibility)
+      nested_solve(targets, r);
+    else
+      joint_solve(targets, r);
+
+    objective_.set_candidate(r.u);  // leave the contact weights on the accepted mesh
+    r.sliding_violation = settings_.geometric_admissibility ? sliding_violation(sliding_, r.u) : 0.0;
+    r.v = dynamic ? Eigen::VectorXd((r.z.head(n_u) - objective_.project(x_t, r.u)) / h) : Eigen::VectorXd::Zero(n_u);
+    r.transfer_seconds = objective_.transfer_seconds() - transfer_before;
+    return r;
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::nested_solve(const Eigen::VectorXd &targets, Result &r)
+  {
+    const bool truncated = settings_.hessian == RitrHessian::truncated;
     for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
       {
-        // Gradient and Hessian of R in u at x = argmin E(., u).
-        const bool full = settings_.hessian == RitrHessian::full;
-        typename BulkEnergy<dim>::JointDerivatives joint;
-        bulk_.joint_derivatives(r.x, r.u, !full, joint);
-        transfer_.set_candidate(r.u);
-        Eigen::VectorXd g = joint.gu - material_.density * transfer_.gradient_u(r.x, predictor_);
-        Triplets        hessian = std::move(joint.huu);
-        transfer_.add_hessian_u(r.x, predictor_, -material_.density, !full, hessian);
-        penalties(r.u, &g, &hessian);
-        if (full)
-          {
-            // Schur complement S = H_uu - H_xu^T H_xx^{-1} H_xu, then Proj+ of S as a whole.
-            const Eigen::Index n = r.u.size();
-            Eigen::SparseMatrix<double> huu(n, n), hxu(n, n), hxx(n, n);
-            huu.setFromTriplets(hessian.begin(), hessian.end());
-            transfer_.add_hessian_xu(r.x, predictor_, -material_.density, joint.hxu);
-            hxu.setFromTriplets(joint.hxu.begin(), joint.hxu.end());
-            hxx.setFromTriplets(joint.hxx.begin(), joint.hxx.end());
-            const Eigen::MatrixXd response = Eigen::MatrixXd(hxx).ldlt().solve(Eigen::MatrixXd(hxu));
-            const Eigen::MatrixXd schur =
-              project_to_psd(Eigen::MatrixXd(Eigen::MatrixXd(huu) - Eigen::MatrixXd(hxu).transpose() * response));
-            hessian.clear();
-            for (Eigen::Index i = 0; i < n; ++i)
-              for (Eigen::Index j = 0; j < n; ++j)
-                hessian.emplace_back(i, j, schur(i, j));
-          }
-
-        Triplets        reduced;
-        Eigen::VectorXd rhs(n_free);
-        for (Eigen::Index i = 0; i < r.u.size(); ++i)
-          if (free_index[i] >= 0)
-            rhs[free_index[i]] = -g[i];
-        for (const auto &t : hessian)
-          if (free_index[t.row()] >= 0 && free_index[t.col()] >= 0 && free_index[t.row()] >= free_index[t.col()])
-            reduced.emplace_back(free_index[t.row()], free_index[t.col()], t.value());
-        Eigen::SparseMatrix<double> H(n_free, n_free);
-        H.setFromTriplets(reduced.begin(), reduced.end());
-        H.makeCompressed();
-        cholesky.factorize(H);
-        const Eigen::VectorXd du_free = cholesky.solve(rhs);
-        Eigen::VectorXd       du      = Eigen::VectorXd::Zero(r.u.size());
-        for (Eigen::Index i = 0; i < r.u.size(); ++i)
-          if (free_index[i] >= 0)
-            du[i] = du_free[free_index[i]];
+        objective_.set_candidate(r.u);
+        const auto d = objective_.derivatives(
+          r.z, r.u, truncated ? ReferenceBlock::following : ReferenceBlock::exact, !truncated);
+        Eigen::VectorXd step_coordinates;
+        r.outer_solve_seconds +=
+          solve_seconds(outer_hessian(d), -(basis_.transpose() * d.gu), step_coordinates);
+        const Eigen::VectorXd du = basis_ * step_coordinates;
         if (du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
-          break;
+          {
+            r.converged = true;
+            return;
+          }
 
         // Backtracking on R from the largest step that keeps the reference mesh admissible;
         // every trial mesh re-solves the implicit step, warm-started from the current x.
-        double          alpha = step_filter(r.u, du);
-        Eigen::VectorXd u_trial, x_trial;
+        Eigen::VectorXd u_trial, z_trial;
         double          trial_objective = std::numeric_limits<double>::infinity();
+        for (double alpha = step_filter(r.u, du); alpha > 1e-12; alpha *= 0.5)
+          {
+            ++r.line_search_trials;
+            u_trial = r.u + alpha * du;
+            z_trial = r.z;
+            if (!solve_on_mesh(u_trial, z_trial, targets, r))
+              continue;
+            trial_objective = objective_.value(z_trial, u_trial);
+            if (trial_objective <= r.objective)
+              break;
+          }
+        if (!(trial_objective <= r.objective))
+          {
+            r.converged = true;  // no decrease along a descent direction: converged to round-off
+            return;
+          }
+        r.u         = u_trial;
+        r.z         = z_trial;
+        r.objective = trial_objective;
+      }
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::joint_solve(const Eigen::VectorXd &targets, Result &r)
+  {
+    if (contact_)
+      throw std::invalid_argument("r-adaptivity without physical admissibility is implemented without contact only");
+    for (Eigen::Index i = 0; i < r.z.size(); ++i)
+      if (inner_.kinematic()[i])
+        r.z[i] = targets[i];
+    const Eigen::Index n_f = free_state_.size(), n_b = basis_.cols(), n_u = basis_.rows(), n_z = r.z.size();
+    Triplets           select;  // state entries <- free entries
+    for (Eigen::Index a = 0; a < n_f; ++a)
+      select.emplace_back(free_state_[a], a, 1.0);
+    const Eigen::SparseMatrix<double> S = to_sparse(select, n_z, n_f);
+
+    for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
+      {
+        objective_.set_candidate(r.u);
+        auto d = objective_.derivatives(r.z, r.u, ReferenceBlock::exact, true);
+        Eigen::VectorXd g(n_f + n_b);
+        g << S.transpose() * d.gx, basis_.transpose() * d.gu;
+        const Eigen::SparseMatrix<double> hxx = S.transpose() * to_sparse(d.hxx, n_z, n_z) * S;
+        const Eigen::SparseMatrix<double> hxu = S.transpose() * to_sparse(d.hxu, n_z, n_u) * basis_;
+        const Eigen::SparseMatrix<double> huu = basis_.transpose() * to_sparse(d.huu, n_u, n_u) * basis_;
+        Triplets                          blocks;
+        const auto add = [&](const Eigen::SparseMatrix<double> &m, Eigen::Index r0, Eigen::Index c0, bool transpose) {
+          for (int k = 0; k < m.outerSize(); ++k)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
+              transpose ? blocks.emplace_back(c0 + it.col(), r0 + it.row(), it.value()) :
+                          blocks.emplace_back(r0 + it.row(), c0 + it.col(), it.value());
+        };
+        add(hxx, 0, 0, false);
+        add(hxu, 0, n_f, false);
+        add(hxu, 0, n_f, true);
+        add(huu, n_f, n_f, false);
+        Eigen::VectorXd step;
+        r.outer_solve_seconds += solve_seconds(to_sparse(blocks, n_f + n_b, n_f + n_b), -g, step);
+        const Eigen::VectorXd dz = S * step.head(n_f), du = basis_ * step.tail(n_b);
+        if (std::max(dz.lpNorm<Eigen::Infinity>(), du.lpNorm<Eigen::Infinity>()) <= settings_.epsilon_r)
+          {
+            r.converged = true;
+            return;
+          }
+        double trial_objective = std::numeric_limits<double>::infinity();
+        double alpha           = step_filter(r.u, du);
         for (; alpha > 1e-12; alpha *= 0.5)
           {
             ++r.line_search_trials;
-            u_trial         = r.u + alpha * du;
-            x_trial         = r.x;
-            r.inner_iterations += solve_inner(u_trial, x_trial);
-            trial_objective = objective(x_trial, u_trial);
-            if (trial_objective <= current)
+            objective_.set_candidate(r.u + alpha * du);
+            trial_objective = objective_.value(r.z + alpha * dz, r.u + alpha * du);
+            if (trial_objective <= r.objective)
               break;
           }
-        if (!(trial_objective <= current))
-          break;  // no decrease along a descent direction: converged to round-off
-        r.u       = u_trial;
-        r.x       = x_trial;
-        current   = trial_objective;
+        if (!(trial_objective <= r.objective))
+          {
+            r.converged = true;
+            return;
+          }
+        r.u += alpha * du;
+        r.z += alpha * dz;
+        r.objective = trial_objective;
       }
-    r.objective = current;
-    r.v         = (r.x - transfer_.project(x_t, r.u)) / h;
-    return r;
   }
 
   template class RitrSolver<1>;

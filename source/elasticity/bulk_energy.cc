@@ -211,7 +211,7 @@ namespace ritr
 
   template <int dim>
   void BulkEnergy<dim>::joint_derivatives(const Eigen::VectorXd &x, const Eigen::VectorXd &u,
-                                          const bool project_uu, JointDerivatives &out) const
+                                          const ReferenceBlock block, JointDerivatives &out) const
   {
     constexpr int n = dim * (dim + 1);
     using Dual      = SecondOrderDual<2 * n>;
@@ -242,8 +242,9 @@ namespace ritr
         const auto &v    = cell_values[c];
         const auto  dof  = [&](int i) { return cell[i / dim] * dim + i % dim; };
         Eigen::Matrix<double, n, n> huu = v.hess.template bottomRightCorner<n, n>();
-        if (project_uu)
-          huu = project_to_psd(huu);
+        if (block == ReferenceBlock::following)
+          huu += v.hess.template topLeftCorner<n, n>() + v.hess.template topRightCorner<n, n>() +
+                 v.hess.template bottomLeftCorner<n, n>();
         for (int i = 0; i < n; ++i)
           {
             out.gx[dof(i)] += v.grad[i];

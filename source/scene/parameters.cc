@@ -95,8 +95,12 @@ namespace ritr
       prm.declare_entry("self contact", "true", Patterns::Bool(), "Contact within one body and between bodies.");
       prm.leave_subsection();
       prm.enter_subsection("Adaptivity");
-      prm.declare_entry("enabled", "false", Patterns::Bool(), "Optimal r-adaptive in-timestep remeshing: every step also optimises the reference node positions (for now: 1D dynamics without contact or Dirichlet conditions, one material).");
-      prm.declare_entry("hessian", "truncated", Patterns::Selection("truncated|full"), "Outer Hessian: truncated (per-cell PSD blocks of d2R/du2, paper eq. 23) or full (dense Schur complement with the response of x; small meshes).");
+      prm.declare_entry("enabled", "false", Patterns::Bool(), "Optimal r-adaptive in-timestep remeshing: every step also optimises the reference node positions (one density for all bodies; Dirichlet nodes keep their reference position).");
+      prm.declare_entry("hessian", "truncated", Patterns::Selection("truncated|full|filtered"), "Outer Hessian: truncated (per-cell PSD blocks of d2R/du2, paper eq. 23), full (dense Schur complement with the response of x) or filtered (that response with entries below 1e-3 of the largest dropped); full and filtered are dense, for small meshes.");
+      prm.declare_entry("inertia", "corrected", Patterns::Selection("corrected|uncorrected"), "Inertia term: corrected (paper eq. 10) or uncorrected (eq. 8, keeps 1/2 x_pred^T M x_pred; ablation).");
+      prm.declare_entry("projection", "in-optimization", Patterns::Selection("in-optimization|after-optimization"), "L2 projection of the predictor: at every candidate mesh (eq. 6) or only after the step's optimisation (ablation).");
+      prm.declare_entry("admissibility", "both", Patterns::Selection("none|geometric|physical|both"), "geometric: boundary sliding, measure barrier and step filter; physical: x = argmin E(., u) at every mesh (without it x and u are minimised jointly; no contact). Ablation switch of paper Fig. 8.");
+      prm.declare_entry("measure barrier stiffness", "0", Patterns::Double(0), "Stiffness of the reference area/volume barrier (eq. 21); 0: the contact barrier's stiffness, or (h^2) E / w_hat without contact.");
       prm.declare_entry("epsilon r", "1e-6", Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
       prm.declare_entry("sliding tolerance", "1e-6", Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
       prm.declare_entry("max iterations", "100", Patterns::Integer(1), "Outer iterations per step.");
@@ -369,23 +373,14 @@ namespace ritr
     prm.enter_subsection("Adaptivity");
     s.adaptivity.enabled           = prm.get_bool("enabled");
     s.adaptivity.hessian           = prm.get("hessian");
+    s.adaptivity.inertia           = prm.get("inertia");
+    s.adaptivity.projection        = prm.get("projection");
+    s.adaptivity.admissibility     = prm.get("admissibility");
+    s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
     s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
     s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
     s.adaptivity.max_iterations    = prm.get_integer("max iterations");
     prm.leave_subsection();
-    if (s.adaptivity.enabled)
-      {
-        // What the r-ITR step supports so far; everything else is refused up front.
-        if (s.dimension != 1)
-          fail("Adaptivity/enabled", "r-adaptivity is verified for 1D rods only so far (2D and 3D are in progress)");
-        if (!s.dynamic())
-          fail("Adaptivity/enabled", "r-adaptivity needs mode = dynamic for now");
-        if (s.contact.enabled || !s.obstacles.empty())
-          fail("Adaptivity/enabled", "r-adaptivity does not include contact yet (set Contact/enabled = false, no obstacles)");
-        if (!s.dirichlet.empty())
-          fail("Adaptivity/enabled", "r-adaptivity does not support Dirichlet conditions yet");
-      }
-
     prm.enter_subsection("Solver");
     s.solver.newton_tolerance = prm.get_double("newton tolerance");
     s.solver.static_tolerance = prm.get_double("static tolerance");

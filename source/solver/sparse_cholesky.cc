@@ -26,6 +26,7 @@ namespace ritr
         ++n_analyses_;
       }
     double shift = 0;
+    llt_.cholmod().print = 0;  // a failed attempt is expected here; no warning on stderr
     llt_.setShift(0.0);
     llt_.factorize(matrix);
     ++n_factorizations_;
@@ -34,7 +35,7 @@ namespace ritr
     // Projected Hessians are only semi-definite (e.g. statics with a free rigid mode):
     // regularise relative to the diagonal's scale.
     const double scale = std::max(matrix.diagonal().cwiseAbs().maxCoeff(), 1e-300);
-    for (shift = 1e-12 * scale; shift < scale; shift *= 100)
+    for (shift = 1e-12 * scale; shift < 1e6 * scale; shift *= 100)
       {
         llt_.setShift(shift);
         llt_.factorize(matrix);

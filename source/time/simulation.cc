@@ -54,8 +54,9 @@ namespace ritr
       , reference((dir / "reference.pvd").string())
       , obstacles((dir / "obstacles.pvd").string())
     {
-      log << "step,time,n_vertices,energy,inner_newton_iterations,outer_iterations,min_distance,"
-             "min_reference_measure,min_deformed_jacobian,wall_seconds\n";
+      log << "step,time,n_vertices,energy,inner_newton_iterations,outer_iterations,line_search_trials,"
+             "initial_objective,sliding_violation,min_distance,min_reference_measure,min_deformed_jacobian,"
+             "inner_solve_seconds,transfer_seconds,outer_solve_seconds,wall_seconds\n";
     }
   };
 
@@ -104,31 +105,59 @@ namespace ritr
         settings.self_contact         = scene.contact.self_contact;
         contact_ = std::make_unique<ContactPotential<dim>>(mesh_, obstacles_, settings);
       }
-    potential_ = std::make_unique<IncrementalPotential<dim>>(*bulk_, contact_.get(), u_);
+    ImplicitStepSettings step_settings;
+    step_settings.newton.max_iterations = scene.solver.max_iterations;
+    step_settings.newton.tolerance =
+      scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step :
+                        scene.solver.static_tolerance * (contact_ ? contact_->bbox_diagonal(state()) : 1.0);
+    step_settings.friction_iterations =
+      contact_ && scene.contact.friction_coefficient > 0 ? scene.contact.friction_iterations : 1;
+    step_settings.barrier_stiffness = scene.contact.barrier_stiffness;
+    step_settings.dhat              = scene.contact.dhat;
+    implicit_step_ = std::make_unique<ImplicitStep<dim>>(*bulk_, contact_.get(), kinematic_, step_settings);
     if (scene.adaptivity.enabled)
-      {
-        for (const unsigned int id : mesh_.cell_material)
-          if (id != mesh_.cell_material.front())
-            throw InputError(file + ": Adaptivity/enabled: r-adaptivity supports one material per scene for now");
-        RitrSettings settings;
-        settings.hessian           = scene.adaptivity.hessian == "full" ? RitrHessian::full : RitrHessian::truncated;
-        settings.sliding_tolerance = scene.adaptivity.sliding_tolerance;
-        settings.max_outer_iterations = scene.adaptivity.max_iterations;
-        settings.epsilon_e         = scene.solver.newton_tolerance;
-        double diagonal2           = 0;
-        for (int k = 0; k < dim; ++k)
-          {
-            const auto coordinates = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<dim>>(u_.data() + k, mesh_.n_nodes());
-            diagonal2 += std::pow(coordinates.maxCoeff() - coordinates.minCoeff(), 2);
-          }
-        settings.epsilon_r = scene.adaptivity.epsilon_r * std::sqrt(diagonal2);
-        // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
-        // integrand (kinks inside candidate cells) far better than low-order rules.
-        const transfer::SimplexQuadrature<dim> quadrature = witherden_vincent_rule<dim>(5);
-        ritr_ = std::make_unique<RitrSolver<dim>>(mesh_, scene.materials[mesh_.cell_material.front()], settings,
-                                                  quadrature);
-      }
+      setup_adaptivity();
     check_initial_state();
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_adaptivity()
+  {
+    const AdaptivityScene &a = scene_.adaptivity;
+    RitrSettings           settings;
+    settings.hessian    = a.hessian == "full" ? RitrHessian::full :
+                          a.hessian == "filtered" ? RitrHessian::filtered : RitrHessian::truncated;
+    settings.inertia    = a.inertia == "uncorrected" ? InertiaForm::uncorrected : InertiaForm::corrected;
+    settings.projection = a.projection == "after-optimization" ? PredictorProjection::after_optimization :
+                                                                 PredictorProjection::in_optimization;
+    settings.geometric_admissibility = a.admissibility == "geometric" || a.admissibility == "both";
+    settings.physical_admissibility  = a.admissibility == "physical" || a.admissibility == "both";
+    settings.sliding_tolerance       = a.sliding_tolerance;
+    settings.max_outer_iterations    = a.max_iterations;
+    settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
+    // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
+    double diagonal2 = 0;
+    for (int k = 0; k < dim; ++k)
+      {
+        const auto coordinates =
+          Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<dim>>(u_.data() + k, mesh_.n_nodes());
+        diagonal2 += std::pow(coordinates.maxCoeff() - coordinates.minCoeff(), 2);
+      }
+    settings.epsilon_r = a.epsilon_r * std::sqrt(diagonal2);
+    // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
+    // integrand (kinks inside candidate cells) far better than low-order rules.
+    const std::string &file = scene_.parameter_file;
+    try
+      {
+        ritr_ = std::make_unique<RitrSolver<dim>>(mesh_, *bulk_, contact_.get(), *implicit_step_, settings,
+                                                  witherden_vincent_rule<dim>(5));
+      }
+    catch (const std::invalid_argument &e)
+      {
+        throw InputError(file + ": Adaptivity/enabled: " + e.what());
+      }
+    if (!settings.physical_admissibility && contact_)
+      throw InputError(file + ": Adaptivity/admissibility: without physical admissibility contact is not supported");
   }
 
   template <int dim>
@@ -304,56 +333,27 @@ namespace ritr
     StepReport report;
     report.step = step_ + 1;
     report.time = t1;
+    const Eigen::VectorXd targets = state_targets(t1);
     if (ritr_)
       {
-        advance_adaptive(report, w.gravity);
+        advance_adaptive(report, w.gravity, targets);
         report.wall_seconds = seconds_since(start);
         history_.push_back(report);
         return report;
       }
 
-    Eigen::VectorXd       z       = state();
-    const Eigen::VectorXd z_start = z;
-    const Eigen::VectorXd targets = state_targets(t1);
-
-    if (contact_)
+    Eigen::VectorXd z = state();
+    try
       {
-        contact_->forget_candidates();
-        const double diagonal = contact_->bbox_diagonal(z);
-        if (scene_.contact.barrier_stiffness > 0)
-          contact_->set_stiffness(scene_.contact.barrier_stiffness);
-        else
-          {
-            const Eigen::VectorXd masses = bulk_->nodal_masses(u_);
-            const auto stiffness = contact::initial_barrier_stiffness(
-              diagonal, scene_.contact.dhat, masses.mean(), potential_->bulk_gradient(z),
-              contact_->barrier_gradient(z));
-            contact_->set_stiffness(stiffness.kappa);
-            potential_->enable_adaptive_stiffness(stiffness.kappa_max, diagonal);
-          }
+        const auto r = implicit_step_->solve_start_of_step(u_, z, state(), targets);
+        report.newton_iterations  = r.iterations;
+        report.line_search_trials = r.line_search_trials;
+        report.energy             = r.energy;
       }
-
-    NewtonSettings settings;
-    settings.max_iterations = scene_.solver.max_iterations;
-    settings.tolerance      = dynamic ? scene_.solver.newton_tolerance * h :
-                                        scene_.solver.static_tolerance * (contact_ ? contact_->bbox_diagonal(z) : 1.0);
-
-    const unsigned int friction_iterations =
-      contact_ && scene_.contact.friction_coefficient > 0 ? scene_.contact.friction_iterations : 1;
-    for (unsigned int f = 0; f < friction_iterations; ++f)
+    catch (const ConvergenceError &e)
       {
-        if (contact_)
-          {
-            contact_->forget_candidates();
-            contact_->update_friction(z, z_start);
-          }
-        const NewtonResult r = newton_.minimize(*potential_, z, kinematic_, targets, settings);
-        report.newton_iterations += r.iterations;
-        report.line_search_trials += r.line_search_trials;
-        report.energy = r.energy;
-        if (!r.converged)
-          throw ConvergenceError("step " + std::to_string(step_ + 1) + " (t = " + std::to_string(t1) +
-                                 ") did not converge: " + r.failure);
+        throw ConvergenceError("step " + std::to_string(step_ + 1) + " (t = " + std::to_string(t1) +
+                               ") did not converge: " + e.what());
       }
 
     const Eigen::VectorXd x_new = z.head(x_.size());
@@ -362,10 +362,6 @@ namespace ritr
     obstacle_positions_ = z.tail(obstacle_positions_.size());
     time_               = t1;
     ++step_;
-
-    if (contact_)
-      contact_->forget_candidates();
-    report.min_distance = contact_ ? contact_->minimum_distance(z) : std::numeric_limits<double>::infinity();
     check_invariants(report);
     report.wall_seconds = seconds_since(start);
     history_.push_back(report);
@@ -373,32 +369,49 @@ namespace ritr
   }
 
   template <int dim>
-  void Simulation<dim>::advance_adaptive(StepReport &report, const std::array<double, dim> &gravity)
+  void Simulation<dim>::advance_adaptive(StepReport &report, const std::array<double, dim> &gravity,
+                                         const Eigen::VectorXd &targets)
   {
     typename RitrSolver<dim>::Result r;
     try
       {
-        r = ritr_->step(u_, x_, v_, scene_.time_step, gravity);
+        r = ritr_->step(u_, state(), v_, targets, scene_.time_step, scene_.dynamic(), gravity);
       }
-    catch (const std::runtime_error &e)
+    catch (const ConvergenceError &e)
       {
         throw ConvergenceError("step " + std::to_string(step_ + 1) + ": " + e.what());
       }
-    u_ = r.u;
-    x_ = r.x;
-    v_ = r.v;
+    u_                  = r.u;
+    x_                  = r.z.head(u_.size());
+    obstacle_positions_ = r.z.tail(obstacle_positions_.size());
+    v_                  = r.v;
     time_ += scene_.time_step;
     ++step_;
-    report.energy                = r.objective;
-    report.newton_iterations     = r.inner_iterations;
-    report.outer_iterations      = r.outer_iterations;
-    report.line_search_trials    = r.line_search_trials;
+    report.energy              = r.objective;
+    report.initial_objective   = r.initial_objective;
+    report.sliding_violation   = r.sliding_violation;
+    report.newton_iterations   = r.inner_iterations;
+    report.outer_iterations    = r.outer_iterations;
+    report.line_search_trials  = r.line_search_trials;
+    report.inner_seconds       = r.inner_seconds;
+    report.transfer_seconds    = r.transfer_seconds;
+    report.outer_solve_seconds = r.outer_solve_seconds;
+    const std::string step = "step " + std::to_string(step_) + ": ";
+    if (!(r.objective <= r.initial_objective))
+      invariant_violations_.push_back(step + "R above its start-of-step value");
+    if (!(r.sliding_violation <= 1e-8))
+      invariant_violations_.push_back(step + "boundary sliding violation " + std::to_string(r.sliding_violation));
     check_invariants(report);
   }
 
   template <int dim>
   void Simulation<dim>::check_invariants(StepReport &report)
   {
+    if (contact_)
+      {
+        contact_->forget_candidates();
+        report.min_distance = contact_->minimum_distance(state());
+      }
     report.min_reference_measure = min_cell_measure(mesh_, u_, false);
     report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x_, u_);
     const std::string step = "step " + std::to_string(step_) + ": ";
@@ -501,11 +514,16 @@ namespace ritr
   void Simulation<dim>::write_summary(const double total_seconds) const
   {
     unsigned int newton = 0, outer = 0, trials = 0;
+    double       inner_seconds = 0, transfer_seconds = 0, outer_seconds = 0, max_sliding = 0;
     for (const auto &r : history_)
       {
         newton += r.newton_iterations;
         outer += r.outer_iterations;
         trials += r.line_search_trials;
+        inner_seconds += r.inner_seconds;
+        transfer_seconds += r.transfer_seconds;
+        outer_seconds += r.outer_solve_seconds;
+        max_sliding = std::max(max_sliding, r.sliding_violation);
       }
     write_file_atomically((outputs_->directory / "summary.json").string(), [&](std::ostream &s) {
       s << "{\n  \"scene\": \"" << scene_.parameter_file << "\",\n"
@@ -517,14 +535,18 @@ namespace ritr
         << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
         << "  \"total_wall_seconds\": " << total_seconds << ",\n"
         << "  \"wall_seconds_per_step\": " << total_seconds / std::max<std::size_t>(1, history_.size()) << ",\n"
-        << "  \"linear_solve_seconds\": " << newton_.seconds_in_linear_solves() << ",\n"
-        << "  \"symbolic_factorizations\": " << newton_.linear_solver().n_symbolic_analyses() << ",\n"
-        << "  \"numeric_factorizations\": " << newton_.linear_solver().n_factorizations() << ",\n"
+        << "  \"linear_solve_seconds\": " << newton_solver().seconds_in_linear_solves() << ",\n"
+        << "  \"symbolic_factorizations\": " << newton_solver().linear_solver().n_symbolic_analyses() << ",\n"
+        << "  \"numeric_factorizations\": " << newton_solver().linear_solver().n_factorizations() << ",\n"
         << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
         << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
         << "  \"total_newton_iterations\": " << newton << ",\n"
         << "  \"total_outer_iterations\": " << outer << ",\n"
         << "  \"total_line_search_trials\": " << trials << ",\n"
+        << "  \"inner_solve_seconds\": " << inner_seconds << ",\n"
+        << "  \"transfer_seconds\": " << transfer_seconds << ",\n"
+        << "  \"outer_solve_seconds\": " << outer_seconds << ",\n"
+        << "  \"max_sliding_violation\": " << max_sliding << ",\n"
         << "  \"invariant_violations\": [";
       for (std::size_t i = 0; i < invariant_violations_.size(); ++i)
         s << (i ? ", " : "") << '"' << invariant_violations_[i] << '"';
@@ -550,8 +572,10 @@ namespace ritr
           {
             const StepReport r = advance();
             outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
-                          << r.newton_iterations << ',' << r.outer_iterations << ',' << r.min_distance << ','
-                          << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.wall_seconds
+                          << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
+                          << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
+                          << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.inner_seconds
+                          << ',' << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds
                           << '\n';
             flush_log();
             if (step_ % scene_.output_every == 0 || step_ == n_steps)

@@ -474,6 +474,22 @@ namespace ritr::transfer
   }
 
   template <int dim>
+  void TransferOperator<dim>::add_hessian_following(const Eigen::VectorXd &x, const Eigen::VectorXd &y,
+                                                    const double scale, const bool project_psd,
+                                                    std::vector<Triplet> &triplets) const
+  {
+    check_ready("add_hessian_following");
+    check_field(x, "x");
+    const auto field = old_field(y);
+    append_cell_blocks(triplets, [&](const std::size_t c) {
+      CellTerms terms;
+      cell_terms<false, false, true, false, true>(c, &x, field, terms);
+      CellMatrix<dim> H = scale * (terms.hess_u + terms.mixed + terms.mixed.transpose());
+      return project_psd ? CellMatrix<dim>(project_to_psd(H)) : H;
+    });
+  }
+
+  template <int dim>
   typename TransferOperator<dim>::SparseMatrix
   TransferOperator<dim>::hessian_u(const Eigen::VectorXd &x, const Eigen::VectorXd &y,
                                    const bool project_psd) const

@@ -58,14 +58,14 @@ namespace
 
     // Joint derivatives agree with the fast path and with differences in u.
     typename BulkEnergy<dim>::JointDerivatives joint;
-    energy.joint_derivatives(x, u, false, joint);
+    energy.joint_derivatives(x, u, ReferenceBlock::exact, joint);
     EXPECT_LT(test_support::relative_error(joint.gx, g), 1e-10);
     EXPECT_LT(test_support::relative_error(dense(joint.hxx, n, n), dense(h, n, n)), 1e-10);
     const auto f_u = [&](const Eigen::VectorXd &v) { return energy.value(x, v); };
     EXPECT_LT(test_support::relative_error(joint.gu, test_support::fd_gradient(f_u, u, 1e-7)), 1e-6);
     const auto gu_of_u = [&](const Eigen::VectorXd &v) {
       typename BulkEnergy<dim>::JointDerivatives j;
-      energy.joint_derivatives(x, v, false, j);
+      energy.joint_derivatives(x, v, ReferenceBlock::exact, j);
       return j.gu;
     };
     EXPECT_LT(test_support::relative_error(dense(joint.huu, n, n), test_support::fd_jacobian(gu_of_u, u, 1e-7)),

@@ -113,7 +113,9 @@ TEST(ErrorHandling, FoldedElements)
   expect_input_error("folded", "", "inverted (folded) elements", "set shape = rectangle",
                      "set shape = file\n  set file = folded.msh");
 }
-TEST(ErrorHandling, AdaptivityOutsideItsVerifiedScopeIsRefused)
+TEST(ErrorHandling, AdaptivityWithoutPhysicalAdmissibilityNeedsNoContact)
 {
-  expect_input_error("adaptivity_2d", "subsection Adaptivity\n set enabled = true\nend\n", "Adaptivity/enabled");
+  expect_input_error("adaptivity_joint_contact",
+                     "subsection Adaptivity\n set enabled = true\n set admissibility = geometric\nend\n",
+                     "Adaptivity/admissibility");
 }

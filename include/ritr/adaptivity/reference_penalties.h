@@ -1,11 +1,11 @@
 #pragma once
-// Geometric admissibility of the reference mesh for r-adaptivity (paper 5.3), as penalty
-// terms of the objective R(x, u):
+// Geometric admissibility of the reference mesh for r-adaptivity (paper 5.3):
 //  - boundary maintenance: a boundary node slides in its (approximately) planar facet, or in
 //    3D along a (nearly) straight boundary edge; any other boundary node is a corner and is
-//    not moved at all;
-//  - non-inversion: a barrier on each reference element's measure below w_hat (eq. 21).
-// Both come with gradients and per-stencil PSD-projected Hessians in u.
+//    not moved at all. The solver moves each node only within these directions, so the
+//    sliding holds exactly instead of through the paper's penalty;
+//  - non-inversion: a barrier on each reference element's measure below w_hat (eq. 21),
+//    with gradient and per-cell PSD-projected Hessian in u.
 #include <ritr/mesh/simplex_mesh.h>
 
 #include <Eigen/Sparse>
@@ -28,7 +28,6 @@ namespace ritr
     SlidingKind kind = SlidingKind::interior;
     Vec<dim>    direction = Vec<dim>::Zero();  // facet normal or edge tangent (unit)
     Vec<dim>    anchor    = Vec<dim>::Zero();  // initial reference position u_i^0
-    double      length    = 1.0;               // local length scale (mean incident boundary edge)
   };
 
   // Classifies every node at the initial reference positions with tolerance eps_b on
@@ -37,12 +36,6 @@ namespace ritr
   std::vector<SlidingConstraint<dim>> classify_sliding(const SimplexMesh<dim> &mesh, double eps_b);
 
   using Triplets = std::vector<Eigen::Triplet<double>>;
-
-  // sum_i 1/2 kappa ((u_i - u_i^0) . n_i / l_i)^2 over facet nodes and
-  // 1/2 kappa |((u_i - u_i^0) / l_i) x t_i|^2 over edge nodes.
-  template <int dim>
-  double sliding_penalty(const std::vector<SlidingConstraint<dim>> &c, const Eigen::VectorXd &u, double kappa,
-                         Eigen::VectorXd *gradient = nullptr, Triplets *hessian = nullptr);
 
   // Largest violation |(u_i - u_i^0) . n_i| (facets) or |(u_i - u_i^0) x t_i| (edges).
   template <int dim>

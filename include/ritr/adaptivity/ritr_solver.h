@@ -1,82 +1,112 @@
 #pragma once
-// One time step of optimal r-adaptive in-timestep remeshing (paper Algorithm 1): a truncated
-// Newton method over the reference positions u, with the implicit step x = argmin E(., u)
-// solved inside every evaluation.
+// One time step of optimal r-adaptive in-timestep remeshing (paper Algorithm 1): a Newton
+// method over the reference positions u of the objective R (ritr_objective.h), with the
+// physical admissibility x = argmin E(., u) solved by the fixed-mesh implicit step at every
+// trial mesh, and geometric admissibility kept by moving boundary nodes only within their
+// (approximately) planar facet or straight edge, a reference measure barrier and a step
+// filter that never lets a reference element invert.
 //
-//   R(x, u) = 1/2 rho x^T Mbar(u) x - rho x^T (A_t(u) (x) I) x_pred + h^2 (Psi(x, u) - gravity work)
-//             + sliding penalties(u) + reference measure barrier(u)
-//
-// with the in-optimization L2 transfer A_t of the predictor from the start-of-step mesh
-// (eqs. 6, 10, 19) and the velocity update v = (x - pi_t(x^t, u)) / h. This first version
-// covers contact-free dynamics of single-density bodies; contact and friction (whose weights
-// already have u-derivatives) are wired in next.
+// The switches reproduce the paper's ablations: outer Hessian truncated | full | filtered
+// (5.4), inertia corrected | uncorrected (4.3), projection in | after optimization (4.1),
+// and admissibility geometric and/or physical (4.5; without physical admissibility x and u
+// are minimised jointly).
 #include <ritr/adaptivity/reference_penalties.h>
-#include <ritr/elasticity/bulk_energy.h>
-#include <ritr/solver/newton.h>
-#include <ritr/transfer/transfer_operator.h>
+#include <ritr/adaptivity/ritr_objective.h>
+#include <ritr/solver/sparse_cholesky.h>
+#include <ritr/time/implicit_step.h>
 
 namespace ritr
 {
-  // The outer Hessian: `truncated` is Proj+(d2R/du2) assembled from per-cell PSD blocks
-  // (paper eq. 23); `full` adds the implicit response of x, -H_ux H_xx^{-1} H_xu, as a dense
-  // Schur complement projected as a whole (small meshes only: it is dense).
+  // The outer Hessian: `truncated` drops the implicit response of x like paper eq. 23, but
+  // takes d2R/du2 with x following u (ReferenceBlock::following): at fixed x it is three
+  // orders of magnitude stiffer than the reduced Hessian and the iteration stalls (Fig. 9
+  // rod). It is factorized with a diagonal shift where it is indefinite. `full` adds the
+  // implicit response of x, -H_ux H_xx^{-1} H_xu, and projects the result as a whole;
+  // `filtered` keeps only the entries of the response dx/du above a relative threshold.
+  // Both of the latter are dense: for small meshes and for comparison only.
   enum class RitrHessian
   {
     truncated,
-    full
+    full,
+    filtered
   };
 
   struct RitrSettings
   {
-    RitrHessian  hessian               = RitrHessian::truncated;
-    double       epsilon_r             = 1e-6;  // stop when |du|_inf <= epsilon_r
-    double       epsilon_e             = 1e-8;  // inner Newton: |dx|_inf <= epsilon_e * h
-    unsigned int max_outer_iterations  = 200;
-    double       sliding_tolerance     = 1e-6;  // eps_b
-    // Stiffness of the sliding penalties and of the measure barrier; 0 picks h^2 E, the
-    // scale of the elastic term per unit measure.
-    double       penalty_stiffness     = 0;
+    RitrHessian         hessian    = RitrHessian::truncated;
+    InertiaForm         inertia    = InertiaForm::corrected;
+    PredictorProjection projection = PredictorProjection::in_optimization;
+    bool                geometric_admissibility = true;
+    bool                physical_admissibility  = true;
+    double       epsilon_r            = 1e-6;  // stop when |du|_inf <= epsilon_r
+    unsigned int max_outer_iterations = 200;
+    double       sliding_tolerance    = 1e-6;  // eps_b
+    double       filter_threshold     = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
+    // Stiffness kappa_w of the reference measure barrier; 0 takes the contact barrier's
+    // stiffness when there is contact, else (h^2) E / w_hat (see ritr_solver.cc).
+    double       measure_barrier_stiffness = 0;
   };
 
   template <int dim>
   class RitrSolver
   {
   public:
-    // `mesh` gives the connectivity, the initial reference (for the sliding anchors and the
-    // measure threshold w_hat = 0.1 * smallest initial cell) and the material ids.
-    RitrSolver(const SimplexMesh<dim> &mesh, const Material &material, const RitrSettings &settings,
+    // `inner` solves the implicit step on a given mesh; `bulk` and `contact` are the terms it
+    // minimises (shared). `mesh` gives the connectivity and the initial reference (sliding
+    // anchors, and w_hat = a tenth of the smallest initial cell measure).
+    RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
+               ImplicitStep<dim> &inner, const RitrSettings &settings,
                const transfer::SimplexQuadrature<dim> &quadrature);
 
     struct Result
     {
-      Eigen::VectorXd u, x, v;
+      Eigen::VectorXd u, z, v;
       double          objective = 0;
+      // R at (argmin E(., u_t), u_t): the step never ends above it.
+      double          initial_objective = 0;
+      double          sliding_violation = 0;
+      bool            converged         = false;  // |du| <= epsilon_r (else stopped by the iteration limit)
       unsigned int    outer_iterations = 0, inner_iterations = 0, line_search_trials = 0;
+      double          inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
     };
 
-    // Advances (u_t, x_t, v_t) by one implicit Euler step of size h.
-    Result step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t, const Eigen::VectorXd &v_t, double h,
-                const std::array<double, dim> &gravity);
+    // Advances (u_t, z_t, v_t) by one step of size h (dynamic: implicit Euler; static: one
+    // load step, v ignored). z_t = [x_t, obstacle vertices], `targets` the kinematic entries
+    // at the end of the step.
+    Result step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t, const Eigen::VectorXd &v_t,
+                const Eigen::VectorXd &targets, double h, bool dynamic, const std::array<double, dim> &gravity);
+
+    double measure_threshold() const { return w_hat_; }
+    const std::vector<SlidingConstraint<dim>> &sliding() const { return sliding_; }
 
   private:
-    // x = argmin_x E(x, u), warm-started from x; returns the Newton iterations.
-    unsigned int solve_inner(const Eigen::VectorXd &u, Eigen::VectorXd &x);
-    double       penalties(const Eigen::VectorXd &u, Eigen::VectorXd *g, Triplets *h) const;
-    // R(x, u); the transfer must have been set to the candidate u.
-    double       objective(const Eigen::VectorXd &x, const Eigen::VectorXd &u) const;
+    // Newton over u with x = argmin E(., u) (physical admissibility).
+    void nested_solve(const Eigen::VectorXd &targets, Result &r);
+    // Newton over (x, u) jointly (the ablation without physical admissibility).
+    void joint_solve(const Eigen::VectorXd &targets, Result &r);
+    // x = argmin E(., u) warm-started from z; false if the inner solve failed.
+    bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r);
+    // The outer Hessian in basis coordinates (see basis_).
+    Eigen::SparseMatrix<double> outer_hessian(const typename RitrObjective<dim>::Derivatives &d) const;
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
-    double       step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
+    double step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
+    double solve_seconds(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs, Eigen::VectorXd &sol);
 
     const SimplexMesh<dim>              &mesh_;
-    Material                             material_;
+    ContactPotential<dim>               *contact_;
+    ImplicitStep<dim>                   &inner_;
     RitrSettings                         settings_;
-    BulkEnergy<dim>                      bulk_;
-    transfer::TransferOperator<dim>      transfer_;
+    RitrObjective<dim>                   objective_;
     std::vector<SlidingConstraint<dim>>  sliding_;
-    std::vector<bool>                    u_fixed_;
+    // u moves in the span of basis_ (n_u x m): every direction for interior nodes, the
+    // tangents of the sliding facet or edge for boundary nodes, none for corners and
+    // Dirichlet nodes. Sliding thus holds exactly, not through a penalty.
+    Eigen::SparseMatrix<double>          basis_;
+    std::vector<int>                     free_state_;  // non-kinematic state entries
     double                               w_hat_ = 0;
-    NewtonSolver                         newton_;
-    Eigen::VectorXd                      predictor_;  // x_pred on the start-of-step mesh
+    double                               youngs_modulus_ = 0;
     double                               h_ = 1;
+    bool                                 dynamic_ = true;
+    SparseCholesky                       cholesky_;
   };
 } // namespace ritr

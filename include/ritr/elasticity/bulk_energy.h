@@ -14,6 +14,21 @@ namespace ritr
 {
   using Triplets = std::vector<Eigen::Triplet<double>>;
 
+  // The u-u Hessian block of an element for r-adaptivity:
+  //  - exact: d2/du2 at fixed x;
+  //  - following: d2/du2 along moves that carry x with u (x - u fixed), i.e.
+  //    H_uu + H_ux + H_xu + H_xx. Moving a reference node while its deformed position stays
+  //    put rewrites the deformation field, so at fixed x the curvature in u is dominated by
+  //    that rewrite; with x following it measures how the mesh carries the same motion.
+  //    Summed over elements (not projected per element: the element blocks cancel), it
+  //    equals the reduced Hessian plus K^T H_xx^-1 K with K = H_xx + H_xu, so it bounds the
+  //    reduced Hessian from above where H_xx is positive definite.
+  enum class ReferenceBlock
+  {
+    exact,
+    following
+  };
+
   template <int dim>
   class BulkEnergy
   {
@@ -35,14 +50,13 @@ namespace ritr
                      Triplets &hessian) const;
 
     // Joint derivatives w.r.t. (x, u): gradients g_x, g_u and the Hessian blocks
-    // H_xx, H_xu, H_uu (appended as triplets). With `project_uu` each element's u-u block
-    // is projected to be positive semi-definite (the truncated Hessian of paper eq. 23).
+    // H_xx, H_xu, H_uu (appended as triplets); `block` says what goes into H_uu per element.
     struct JointDerivatives
     {
       Eigen::VectorXd gx, gu;
       Triplets        hxx, hxu, huu;
     };
-    void joint_derivatives(const Eigen::VectorXd &x, const Eigen::VectorXd &u, bool project_uu,
+    void joint_derivatives(const Eigen::VectorXd &x, const Eigen::VectorXd &u, ReferenceBlock block,
                            JointDerivatives &out) const;
 
     const SimplexMesh<dim> &mesh() const { return mesh_; }

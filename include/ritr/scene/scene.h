@@ -53,9 +53,13 @@ namespace ritr
   struct AdaptivityScene
   {
     bool        enabled           = false;
-    std::string hessian           = "truncated";  // truncated | full
+    std::string hessian           = "truncated";  // truncated | full | filtered
+    std::string inertia           = "corrected";  // corrected | uncorrected
+    std::string projection        = "in-optimization";  // in-optimization | after-optimization
+    std::string admissibility     = "both";       // none | geometric | physical | both
     double      epsilon_r         = 1e-6;         // on |du|_inf, in units of the mesh's size
     double      sliding_tolerance = 1e-6;         // eps_b
+    double      measure_barrier_stiffness = 0;    // 0: automatic
     unsigned    max_iterations    = 100;
   };
 

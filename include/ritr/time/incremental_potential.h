@@ -25,6 +25,7 @@ namespace ritr
       bbox_diagonal_ = bbox_diagonal;
       previous_distance_ = std::numeric_limits<double>::infinity();
     }
+    void disable_adaptive_stiffness() { adaptive_ = false; }
 
     // A term l^T x added to the objective (r-adaptivity: the transferred inertia target
     // -rho A_t(u) x_pred, which is linear in x for a fixed candidate mesh u).

@@ -8,21 +8,13 @@
 #include <ritr/scene/expression.h>
 #include <ritr/scene/scene.h>
 #include <ritr/solver/newton.h>
-#include <ritr/time/incremental_potential.h>
+#include <ritr/time/implicit_step.h>
 
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 namespace ritr
 {
-  // A step that could not be solved; the run stops with exit code 3.
-  class ConvergenceError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
   // What one step did, for log.csv and the progress line.
   struct StepReport
   {
@@ -32,6 +24,11 @@ namespace ritr
     unsigned int newton_iterations = 0;
     unsigned int outer_iterations  = 0;
     unsigned int line_search_trials = 0;
+    // r-adaptivity: R at the step's start mesh (the step never ends above it), the boundary
+    // sliding violation and the time split between inner solves, transfer and outer solves.
+    double       initial_objective = 0;
+    double       sliding_violation = 0;
+    double       inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
     double       min_distance = std::numeric_limits<double>::infinity();
     double       min_reference_measure = 0;
     double       min_deformed_jacobian = 0;
@@ -59,17 +56,19 @@ namespace ritr
     double                  time() const { return time_; }
     const std::vector<StepReport> &history() const { return history_; }
     const BulkEnergy<dim>  &bulk_energy() const { return *bulk_; }
-    const NewtonSolver     &newton_solver() const { return newton_; }
+    const NewtonSolver     &newton_solver() const { return implicit_step_->newton(); }
     // Physical contact force on every body node (zero without contact).
     Eigen::VectorXd contact_forces() const;
 
   private:
     void setup_obstacles();
     void setup_dirichlet();
+    void setup_adaptivity();
     void check_initial_state() const;
     double signed_cell_measure(unsigned int cell) const;  // at the reference positions
     Eigen::VectorXd state_targets(double t) const;  // kinematic entries at time t
-    void            advance_adaptive(StepReport &report, const std::array<double, dim> &gravity);
+    void            advance_adaptive(StepReport &report, const std::array<double, dim> &gravity,
+                                     const Eigen::VectorXd &targets);
     // Fills the report's mesh invariants after a step and records any violation.
     void            check_invariants(StepReport &report);
     Eigen::VectorXd state() const;
@@ -82,9 +81,8 @@ namespace ritr
     std::unique_ptr<BulkEnergy<dim>>           bulk_;
     std::vector<contact::RigidObstacle<dim>>   obstacles_;
     std::unique_ptr<ContactPotential<dim>>     contact_;
-    std::unique_ptr<IncrementalPotential<dim>> potential_;
+    std::unique_ptr<ImplicitStep<dim>>         implicit_step_;
     std::unique_ptr<RitrSolver<dim>>           ritr_;  // with adaptivity on
-    NewtonSolver                               newton_;
     std::vector<bool>                          kinematic_;  // per state entry
     std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition
     std::vector<Expression<dim>>               dirichlet_displacements_;

@@ -89,6 +89,11 @@ namespace ritr::transfer
     SparseMatrix hessian_u(const Eigen::VectorXd &x, const Eigen::VectorXd &y,
                            bool project_psd = false) const;
 
+    // Appends scale * (d2b/du2 + d2b/dxdu + d2b/dudx) per cell: the u-Hessian along moves that
+    // carry x with u (x - u fixed; d2b/dx2 = 0), optionally projected per cell.
+    void add_hessian_following(const Eigen::VectorXd &x, const Eigen::VectorXd &y, double scale,
+                               bool project_psd, std::vector<Triplet> &triplets) const;
+
     // Appends scale * d2b/dx du: rows in x numbering, columns in u numbering.
     void add_hessian_xu(const Eigen::VectorXd &x, const Eigen::VectorXd &y, double scale,
                         std::vector<Triplet> &triplets) const;

@@ -1,0 +1,71 @@
+#pragma once
+// One implicit step on a given reference mesh u: minimise the incremental potential over
+// the state z = [body nodes, obstacle vertices] with projected Newton, kinematic entries
+// (Dirichlet nodes, scripted obstacles) driven to their targets, IPC's barrier stiffness
+// and lagged friction. The fixed-mesh simulation calls it once per step; r-adaptivity calls
+// it for every candidate reference mesh (the physical admissibility x = argmin E(., u)).
+#include <ritr/contact/contact_potential.h>
+#include <ritr/elasticity/bulk_energy.h>
+#include <ritr/solver/newton.h>
+#include <ritr/time/incremental_potential.h>
+
+#include <stdexcept>
+
+namespace ritr
+{
+  // A step that could not be solved; the run stops with exit code 3.
+  class ConvergenceError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  struct ImplicitStepSettings
+  {
+    NewtonSettings newton;
+    unsigned int   friction_iterations = 1;
+    double         barrier_stiffness   = 0;  // fixed kappa; 0 selects IPC's adaptive rule
+    double         dhat                = 1e-3;
+  };
+
+  template <int dim>
+  class ImplicitStep
+  {
+  public:
+    // The bulk weights and predictor are set by the caller before each step.
+    ImplicitStep(BulkEnergy<dim> &bulk, ContactPotential<dim> *contact, const std::vector<bool> &kinematic,
+                 const ImplicitStepSettings &settings);
+
+    struct Report
+    {
+      unsigned int iterations = 0, line_search_trials = 0;
+      double       energy = 0;
+    };
+
+    // First solve of a step, on reference u: initialises the barrier stiffness at z (IPC's
+    // rule, adapted while Newton runs) and lags friction `friction_iterations` times, with
+    // slip measured from z_start. Throws ConvergenceError.
+    Report solve_start_of_step(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &z_start,
+                               const Eigen::VectorXd &targets);
+    // Later solves of the same step on another reference u (r-adaptivity's trial meshes),
+    // warm-started from z: the stiffness and lagged friction stay frozen, so that the
+    // objective is one function across trials. `linear_term` (may be empty) adds l^T x.
+    Report solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets);
+
+    void set_linear_term(const Eigen::VectorXd &l) { potential_.set_linear_term(l); }
+    const std::vector<bool> &kinematic() const { return kinematic_; }
+    const NewtonSolver      &newton() const { return newton_; }
+    IncrementalPotential<dim> &potential() { return potential_; }
+
+  private:
+    Report newton_solve(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets);
+
+    BulkEnergy<dim>           &bulk_;
+    ContactPotential<dim>     *contact_;
+    std::vector<bool>          kinematic_;
+    ImplicitStepSettings       settings_;
+    Eigen::VectorXd            reference_;  // the mesh of the current solve
+    IncrementalPotential<dim>  potential_;
+    NewtonSolver               newton_;
+  };
+} // namespace ritr

@@ -1,0 +1,210 @@
+#include <ritr/adaptivity/ritr_objective.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace ritr
+{
+  namespace
+  {
+    // Adds the wall time of its scope to a counter.
+    class ScopedTimer
+    {
+    public:
+      explicit ScopedTimer(double &total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+      ~ScopedTimer() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+    private:
+      double                                &total_;
+      std::chrono::steady_clock::time_point  start_;
+    };
+  } // namespace
+
+  template <int dim>
+  RitrObjective<dim>::RitrObjective(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk,
+                                    ContactPotential<dim> *contact, const transfer::SimplexQuadrature<dim> &quadrature,
+                                    const InertiaForm inertia, const PredictorProjection projection)
+    : mesh_(mesh)
+    , bulk_(bulk)
+    , mass_(mesh, std::vector<Material>(*std::max_element(mesh.cell_material.begin(), mesh.cell_material.end()) + 1,
+                                        bulk.cell_material(0)))
+    , contact_(contact)
+    , transfer_(mesh.cells, quadrature)
+    , inertia_(inertia)
+    , projection_(projection)
+  {
+    // The transfer term rho x^T A_t y assumes one density (paper eq. 20).
+    density_ = bulk.cell_material(0).density;
+    for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+      if (bulk.cell_material(c).density != density_)
+        throw std::invalid_argument("r-adaptivity needs one density for all bodies");
+    CellEnergyWeights<dim> w;
+    w.inertia   = 1;
+    w.potential = 0;
+    mass_.set_weights(w);
+    mass_.set_predictor(Eigen::VectorXd::Zero(mesh.reference.size()));
+  }
+
+  template <int dim>
+  void RitrObjective<dim>::begin_step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t,
+                                      const Eigen::VectorXd &v_t, const double h, const bool dynamic,
+                                      const std::array<double, dim> &gravity)
+  {
+    dynamic_   = dynamic;
+    predictor_ = x_t + h * v_t;
+    CellEnergyWeights<dim> w;
+    w.inertia           = dynamic ? 1.0 : 0.0;
+    w.potential         = dynamic ? h * h : 1.0;
+    w.gravity           = gravity;
+    w.corrected_inertia = !(projection_ == PredictorProjection::after_optimization && inertia_ == InertiaForm::uncorrected);
+    bulk_.set_weights(w);
+    // With the in-optimization projection the predictor enters through the transfer only.
+    bulk_.set_predictor(uses_transfer() || !dynamic ? Eigen::VectorXd::Zero(x_t.size()) : predictor_);
+    if (dynamic)
+      {
+        ScopedTimer timer(transfer_seconds_);
+        transfer_.set_old_mesh(u_t);
+      }
+  }
+
+  template <int dim>
+  void RitrObjective<dim>::set_candidate(const Eigen::VectorXd &u)
+  {
+    if (contact_)
+      contact_->set_reference(u);
+    if (!dynamic_)
+      return;
+    ScopedTimer timer(transfer_seconds_);
+    transfer_.set_candidate(u);
+    if (adds_projected_predictor())
+      projected_predictor_ = transfer_.project(predictor_);
+  }
+
+  template <int dim>
+  Eigen::VectorXd RitrObjective<dim>::linear_term() const
+  {
+    if (!uses_transfer())
+      return {};
+    ScopedTimer timer(transfer_seconds_);
+    return -density_ * transfer_.gradient_x(predictor_);
+  }
+
+  template <int dim>
+  double RitrObjective<dim>::value(const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+  {
+    const Eigen::VectorXd x = z.head(u.size());
+    double                r = bulk_.value(x, u);
+    if (!std::isfinite(r))
+      return std::numeric_limits<double>::infinity();
+    if (uses_transfer())
+      {
+        ScopedTimer timer(transfer_seconds_);
+        r -= density_ * transfer_.value(x, predictor_);
+        if (adds_projected_predictor())
+          r += 0.5 * density_ * transfer_.value(projected_predictor_, predictor_);  // 1/2 rho pi^T Mbar pi
+      }
+    if (contact_)
+      {
+        contact_->forget_candidates();
+        r += contact_->value(z);
+      }
+    if (kappa_w_ > 0)
+      r += reference_measure_barrier(mesh_, u, w_hat_, kappa_w_);
+    return r;
+  }
+
+  template <int dim>
+  typename RitrObjective<dim>::Derivatives RitrObjective<dim>::derivatives(const Eigen::VectorXd &z,
+                                                                           const Eigen::VectorXd &u,
+                                                                           const ReferenceBlock block,
+                                                                           const bool coupling) const
+  {
+    const Eigen::VectorXd x         = z.head(u.size());
+    const bool following = block == ReferenceBlock::following;
+    Derivatives           d;
+    {
+      typename BulkEnergy<dim>::JointDerivatives joint;
+      bulk_.joint_derivatives(x, u, block, joint);
+      d.gu  = std::move(joint.gu);
+      d.huu = std::move(joint.huu);
+      if (coupling)
+        {
+          d.gx = Eigen::VectorXd::Zero(z.size());
+          d.gx.head(x.size()) = joint.gx;
+          d.hxx = std::move(joint.hxx);
+          d.hxu = std::move(joint.hxu);
+        }
+    }
+    if (uses_transfer())
+      {
+        ScopedTimer timer(transfer_seconds_);
+        d.gu -= density_ * transfer_.gradient_u(x, predictor_);
+        if (following)
+          transfer_.add_hessian_following(x, predictor_, -density_, false, d.huu);
+        else
+          transfer_.add_hessian_u(x, predictor_, -density_, false, d.huu);
+        if (coupling)
+          {
+            d.gx.head(x.size()) -= density_ * transfer_.gradient_x(predictor_);
+            transfer_.add_hessian_xu(x, predictor_, -density_, d.hxu);
+          }
+        if (adds_projected_predictor())
+          {
+            // 1/2 rho pi^T Mbar pi = rho max_p (p^T A y - 1/2 p^T Mbar p): by the envelope
+            // theorem its gradient is that of the bracket at p = pi. The Hessian keeps only the
+            // transfer part (a truncation, as for the rest of the outer Hessian).
+            typename BulkEnergy<dim>::JointDerivatives kinetic;
+            mass_.joint_derivatives(projected_predictor_, u, ReferenceBlock::exact, kinetic);
+            d.gu += density_ * transfer_.gradient_u(projected_predictor_, predictor_) - kinetic.gu;
+            transfer_.add_hessian_u(projected_predictor_, predictor_, density_, true, d.huu);
+          }
+      }
+    if (contact_)
+      {
+        contact_->forget_candidates();
+        typename ContactPotential<dim>::ReferenceDerivatives rd;
+        contact_->reference_derivatives(z, rd);
+        d.gu += rd.gu;
+        d.huu.insert(d.huu.end(), rd.huu.begin(), rd.huu.end());
+        if (following)
+          {
+            // H_xu + H_ux + H_xx restricted to the body's nodes (x follows u there).
+            const Eigen::Index n_u = u.size();
+            for (const auto &t : rd.hxu)
+              if (t.row() < n_u)
+                {
+                  d.huu.emplace_back(t.row(), t.col(), t.value());
+                  d.huu.emplace_back(t.col(), t.row(), t.value());
+                }
+            Triplets hxx;
+            contact_->add_hessian(z, hxx);
+            for (const auto &t : hxx)
+              if (t.row() < n_u && t.col() < n_u)
+                d.huu.push_back(t);
+          }
+        if (coupling)
+          {
+            contact_->add_gradient(z, d.gx);
+            contact_->add_hessian(z, d.hxx);
+            d.hxu.insert(d.hxu.end(), rd.hxu.begin(), rd.hxu.end());
+          }
+      }
+    if (kappa_w_ > 0)
+      reference_measure_barrier(mesh_, u, w_hat_, kappa_w_, &d.gu, &d.huu, true);
+    return d;
+  }
+
+  template <int dim>
+  Eigen::VectorXd RitrObjective<dim>::project(const Eigen::VectorXd &y, const Eigen::VectorXd &u)
+  {
+    ScopedTimer timer(transfer_seconds_);
+    return transfer_.project(y, u);
+  }
+
+  template class RitrObjective<1>;
+  template class RitrObjective<2>;
+  template class RitrObjective<3>;
+} // namespace ritr

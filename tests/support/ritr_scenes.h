@@ -1,0 +1,34 @@
+#pragma once
+// Runs the r-ITR verification scenes of prm/verification/ritr in-process, with the
+// adaptivity switches of each ablation set in code.
+#include <ritr/scene/parameters.h>
+#include <ritr/time/simulation.h>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+namespace ritr::test_support
+{
+  inline Scene ritr_scene(const std::string &name)
+  {
+    return read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/verification/ritr/" + name);
+  }
+
+  // Builds the simulation and advances it through every step of the scene.
+  template <int dim>
+  std::unique_ptr<Simulation<dim>> run_scene(const Scene &scene)
+  {
+    auto simulation = std::make_unique<Simulation<dim>>(scene);
+    for (unsigned int i = 0; i < scene.n_steps(); ++i)
+      simulation->advance();
+    return simulation;
+  }
+
+  // Potential energy Psi - gravity work of the final state (statics: the equilibrium energy).
+  template <int dim>
+  double static_energy(const Simulation<dim> &s)
+  {
+    return s.bulk_energy().value(s.positions(), s.reference());
+  }
+} // namespace ritr::test_support
