@@ -227,7 +227,14 @@ namespace ritr
         Eigen::VectorXd step_coordinates;
         r.outer_solve_seconds +=
           solve_seconds(outer_hessian(d), -(basis_.transpose() * d.gu), step_coordinates);
-        const Eigen::VectorXd du = basis_ * step_coordinates;
+        Eigen::VectorXd du = basis_ * step_coordinates;
+        if (!du.allFinite())
+          {
+            // The outer Hessian vanished (a flat or, once projected, concave direction): a
+            // steepest-descent step of half the initial smallest cell size instead.
+            const Eigen::VectorXd g = basis_ * (basis_.transpose() * d.gu);
+            du = -0.5 * std::pow(10 * w_hat_, 1.0 / dim) / std::max(g.lpNorm<Eigen::Infinity>(), 1e-300) * g;
+          }
         if (du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
           {
             r.converged = true;
