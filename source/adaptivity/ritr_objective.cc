@@ -1,28 +1,13 @@
 #include <ritr/adaptivity/ritr_objective.h>
+#include <ritr/common/wall_clock.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace ritr
 {
-  namespace
-  {
-    // Adds the wall time of its scope to a counter.
-    class ScopedTimer
-    {
-    public:
-      explicit ScopedTimer(double &total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-      ~ScopedTimer() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
-    private:
-      double                                &total_;
-      std::chrono::steady_clock::time_point  start_;
-    };
-  } // namespace
-
   template <int dim>
   RitrObjective<dim>::RitrObjective(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk,
                                     ContactPotential<dim> *contact, const transfer::SimplexQuadrature<dim> &quadrature,

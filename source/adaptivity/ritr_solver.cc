@@ -1,9 +1,9 @@
 #include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/common/psd_projection.h>
+#include <ritr/common/wall_clock.h>
 
 #include <Eigen/Dense>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -11,11 +11,6 @@ namespace ritr
 {
   namespace
   {
-    double seconds_since(const std::chrono::steady_clock::time_point start)
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-
     Eigen::SparseMatrix<double> to_sparse(const Triplets &t, const Eigen::Index rows, const Eigen::Index cols)
     {
       Eigen::SparseMatrix<double> m(rows, cols);
@@ -91,20 +86,18 @@ namespace ritr
   bool RitrSolver<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
                                       Result &r)
   {
-    const auto start = std::chrono::steady_clock::now();
+    ScopedTimer timer(r.inner_seconds);
     objective_.set_candidate(u);
     inner_.set_linear_term(objective_.linear_term());
-    bool solved = true;
     try
       {
         r.inner_iterations += inner_.solve_on_mesh(u, z, targets).iterations;
+        return true;
       }
     catch (const ConvergenceError &)
       {
-        solved = false;  // the trial mesh is rejected like one that raises R
+        return false;  // the trial mesh is rejected like one that raises R
       }
-    r.inner_seconds += seconds_since(start);
-    return solved;
   }
 
   template <int dim>
@@ -159,15 +152,14 @@ namespace ritr
   }
 
   template <int dim>
-  double RitrSolver<dim>::solve_seconds(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs,
-                                        Eigen::VectorXd &sol)
+  Eigen::VectorXd RitrSolver<dim>::solve_outer(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs,
+                                               Result &r)
   {
-    const auto                  start = std::chrono::steady_clock::now();
+    ScopedTimer                 timer(r.outer_solve_seconds);
     Eigen::SparseMatrix<double> lower = H.template triangularView<Eigen::Lower>();
     lower.makeCompressed();
     cholesky_.factorize(lower);
-    sol = cholesky_.solve(rhs);
-    return seconds_since(start);
+    return cholesky_.solve(rhs);
   }
 
   template <int dim>
@@ -176,8 +168,6 @@ namespace ritr
                                                          const double h, const bool dynamic,
                                                          const std::array<double, dim> &gravity)
   {
-    h_       = h;
-    dynamic_ = dynamic;
     const Eigen::Index    n_u = u_t.size();
     const Eigen::VectorXd x_t = z_t.head(n_u);
     const double          transfer_before = objective_.transfer_seconds();
@@ -189,11 +179,10 @@ namespace ritr
     // Physical admissibility at the start-of-step mesh: this also sets the contact stiffness
     // and lags friction for the whole step.
     {
-      const auto start = std::chrono::steady_clock::now();
+      ScopedTimer timer(r.inner_seconds);
       objective_.set_candidate(u_t);
       inner_.set_linear_term(objective_.linear_term());
       r.inner_iterations += inner_.solve_start_of_step(u_t, r.z, z_t, targets).iterations;
-      r.inner_seconds += seconds_since(start);
     }
     // The measure barrier's stiffness matches the contact barrier's (paper 5.3.2); without
     // contact it is the elastic stiffness per unit measure at the threshold w_hat.
@@ -224,10 +213,7 @@ namespace ritr
         objective_.set_candidate(r.u);
         const auto d = objective_.derivatives(
           r.z, r.u, truncated ? ReferenceBlock::following : ReferenceBlock::exact, !truncated);
-        Eigen::VectorXd step_coordinates;
-        r.outer_solve_seconds +=
-          solve_seconds(outer_hessian(d), -(basis_.transpose() * d.gu), step_coordinates);
-        Eigen::VectorXd du = basis_ * step_coordinates;
+        Eigen::VectorXd du = basis_ * solve_outer(outer_hessian(d), -(basis_.transpose() * d.gu), r);
         if (!du.allFinite())
           {
             // The outer Hessian vanished (a flat or, once projected, concave direction): a
@@ -301,8 +287,7 @@ namespace ritr
         add(hxu, 0, n_f, false);
         add(hxu, 0, n_f, true);
         add(huu, n_f, n_f, false);
-        Eigen::VectorXd step;
-        r.outer_solve_seconds += solve_seconds(to_sparse(blocks, n_f + n_b, n_f + n_b), -g, step);
+        const Eigen::VectorXd step = solve_outer(to_sparse(blocks, n_f + n_b, n_f + n_b), -g, r);
         const Eigen::VectorXd dz = S * step.head(n_f), du = basis_ * step.tail(n_b);
         if (std::max(dz.lpNorm<Eigen::Infinity>(), du.lpNorm<Eigen::Infinity>()) <= settings_.epsilon_r)
           {

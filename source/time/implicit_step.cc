@@ -14,8 +14,8 @@ namespace ritr
   {}
 
   template <int dim>
-  typename ImplicitStep<dim>::Report ImplicitStep<dim>::newton_solve(const Eigen::VectorXd &u, Eigen::VectorXd &z,
-                                                                     const Eigen::VectorXd &targets)
+  typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
+                                                                      const Eigen::VectorXd &targets)
   {
     reference_ = u;
     if (contact_)
@@ -63,20 +63,13 @@ namespace ritr
             contact_->forget_candidates();
             contact_->update_friction(z, z_start);
           }
-        const Report r = newton_solve(u, z, targets);
+        const Report r = solve_on_mesh(u, z, targets);
         report.iterations += r.iterations;
         report.line_search_trials += r.line_search_trials;
         report.energy = r.energy;
       }
     potential_.disable_adaptive_stiffness();
     return report;
-  }
-
-  template <int dim>
-  typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
-                                                                      const Eigen::VectorXd &targets)
-  {
-    return newton_solve(u, z, targets);
   }
 
   template class ImplicitStep<1>;

@@ -1,4 +1,5 @@
 #include <ritr/common/atomic_file.h>
+#include <ritr/common/wall_clock.h>
 #include <ritr/mesh/obstacle_reader.h>
 #include <ritr/mesh/simplex_rules.h>
 #include <ritr/metrics/mesh_metrics.h>
@@ -34,10 +35,6 @@ namespace ritr
       return s.str();
     }
 
-    double seconds_since(const std::chrono::steady_clock::time_point start)
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
   } // namespace
 
   template <int dim>
@@ -46,7 +43,6 @@ namespace ritr
     std::filesystem::path directory;
     PvdCollection         solution, reference, obstacles;
     std::ostringstream    log;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 
     explicit Outputs(const std::filesystem::path &dir)
       : directory(dir)

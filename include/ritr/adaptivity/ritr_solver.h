@@ -76,9 +76,6 @@ namespace ritr
     Result step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t, const Eigen::VectorXd &v_t,
                 const Eigen::VectorXd &targets, double h, bool dynamic, const std::array<double, dim> &gravity);
 
-    double measure_threshold() const { return w_hat_; }
-    const std::vector<SlidingConstraint<dim>> &sliding() const { return sliding_; }
-
   private:
     // Newton over u with x = argmin E(., u) (physical admissibility).
     void nested_solve(const Eigen::VectorXd &targets, Result &r);
@@ -90,7 +87,8 @@ namespace ritr
     Eigen::SparseMatrix<double> outer_hessian(const typename RitrObjective<dim>::Derivatives &d) const;
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
     double step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
-    double solve_seconds(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs, Eigen::VectorXd &sol);
+    // Solves H s = rhs (lower triangle, shifted if indefinite), timed into r.
+    Eigen::VectorXd solve_outer(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs, Result &r);
 
     const SimplexMesh<dim>              &mesh_;
     ContactPotential<dim>               *contact_;
@@ -105,8 +103,6 @@ namespace ritr
     std::vector<int>                     free_state_;  // non-kinematic state entries
     double                               w_hat_ = 0;
     double                               youngs_modulus_ = 0;
-    double                               h_ = 1;
-    bool                                 dynamic_ = true;
     SparseCholesky                       cholesky_;
   };
 } // namespace ritr

@@ -58,8 +58,6 @@ namespace ritr
     IncrementalPotential<dim> &potential() { return potential_; }
 
   private:
-    Report newton_solve(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets);
-
     BulkEnergy<dim>           &bulk_;
     ContactPotential<dim>     *contact_;
     std::vector<bool>          kinematic_;
