@@ -1,5 +1,8 @@
 #include <ritr/adaptivity/ritr_objective.h>
+
 #include <ritr/common/wall_clock.h>
+
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
@@ -138,13 +141,18 @@ namespace ritr
           }
         if (adds_projected_predictor())
           {
-            // 1/2 rho pi^T Mbar pi = rho max_p (p^T A y - 1/2 p^T Mbar p): by the envelope
-            // theorem its gradient is that of the bracket at p = pi. The Hessian keeps only the
-            // transfer part (a truncation, as for the rest of the outer Hessian).
+            // 1/2 rho pi^T Mbar pi = max_p g(p, u), g = rho p^T A y - 1/2 p^T M p: by the
+            // envelope theorem its gradient is g_u at p = pi, and its Hessian is
+            // g_uu + g_up M^-1 g_pu. The response part is dense and is only formed with the
+            // coupling blocks (full and filtered outer Hessians); the truncated one keeps g_uu.
             typename BulkEnergy<dim>::JointDerivatives kinetic;
             mass_.joint_derivatives(projected_predictor_, u, ReferenceBlock::exact, kinetic);
             d.gu += density_ * transfer_.gradient_u(projected_predictor_, predictor_) - kinetic.gu;
-            transfer_.add_hessian_u(projected_predictor_, predictor_, density_, true, d.huu);
+            transfer_.add_hessian_u(projected_predictor_, predictor_, density_, false, d.huu);
+            for (const auto &t : kinetic.huu)
+              d.huu.emplace_back(t.row(), t.col(), -t.value());
+            if (coupling)
+              add_projection_response(kinetic, u.size(), d.huu);
           }
       }
     if (contact_)
@@ -180,6 +188,25 @@ namespace ritr
     if (kappa_w_ > 0)
       reference_measure_barrier(mesh_, u, w_hat_, kappa_w_, &d.gu, &d.huu, true);
     return d;
+  }
+
+  template <int dim>
+  void RitrObjective<dim>::add_projection_response(const typename BulkEnergy<dim>::JointDerivatives &kinetic,
+                                                   const Eigen::Index n_u, Triplets &huu) const
+  {
+    Triplets g_pu_triplets;
+    transfer_.add_hessian_xu(projected_predictor_, predictor_, density_, g_pu_triplets);
+    for (const auto &t : kinetic.hxu)
+      g_pu_triplets.emplace_back(t.row(), t.col(), -t.value());
+    Eigen::SparseMatrix<double> g_pu(n_u, n_u), mass(n_u, n_u);
+    g_pu.setFromTriplets(g_pu_triplets.begin(), g_pu_triplets.end());
+    mass.setFromTriplets(kinetic.hxx.begin(), kinetic.hxx.end());
+    const Eigen::MatrixXd dense_g_pu = Eigen::MatrixXd(g_pu);
+    const Eigen::MatrixXd response   = dense_g_pu.transpose() * Eigen::MatrixXd(mass).ldlt().solve(dense_g_pu);
+    for (Eigen::Index j = 0; j < n_u; ++j)
+      for (Eigen::Index i = 0; i < n_u; ++i)
+        if (response(i, j) != 0.0)
+          huu.emplace_back(i, j, response(i, j));
   }
 
   template <int dim>

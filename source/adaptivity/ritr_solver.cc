@@ -213,14 +213,16 @@ namespace ritr
         objective_.set_candidate(r.u);
         const auto d = objective_.derivatives(
           r.z, r.u, truncated ? ReferenceBlock::following : ReferenceBlock::exact, !truncated);
-        Eigen::VectorXd du = basis_ * solve_outer(outer_hessian(d), -(basis_.transpose() * d.gu), r);
-        if (!du.allFinite())
-          {
-            // The outer Hessian vanished (a flat or, once projected, concave direction): a
-            // steepest-descent step of half the initial smallest cell size instead.
-            const Eigen::VectorXd g = basis_ * (basis_.transpose() * d.gu);
-            du = -0.5 * std::pow(10 * w_hat_, 1.0 / dim) / std::max(g.lpNorm<Eigen::Infinity>(), 1e-300) * g;
-          }
+        const Eigen::VectorXd g  = basis_ * (basis_.transpose() * d.gu);
+        Eigen::VectorXd       du = basis_ * solve_outer(outer_hessian(d), -(basis_.transpose() * d.gu), r);
+        // Newton steps are trusted up to half the initial smallest cell size. Where the outer
+        // Hessian nearly vanishes (flat, or concave once projected) the solve returns a huge
+        // or non-finite step: then steepest descent of that length instead.
+        const double trust = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
+        if (!du.allFinite() || du.dot(g) >= 0)
+          du = -trust / std::max(g.lpNorm<Eigen::Infinity>(), 1e-300) * g;
+        else if (du.lpNorm<Eigen::Infinity>() > trust)
+          du *= trust / du.lpNorm<Eigen::Infinity>();
         if (du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
           {
             r.converged = true;

@@ -101,6 +101,7 @@ namespace ritr
       prm.declare_entry("projection", "in-optimization", Patterns::Selection("in-optimization|after-optimization"), "L2 projection of the predictor: at every candidate mesh (eq. 6) or only after the step's optimisation (ablation).");
       prm.declare_entry("admissibility", "both", Patterns::Selection("none|geometric|physical|both"), "geometric: boundary sliding, measure barrier and step filter; physical: x = argmin E(., u) at every mesh (without it x and u are minimised jointly; no contact). Ablation switch of paper Fig. 8.");
       prm.declare_entry("measure barrier stiffness", "0", Patterns::Double(0), "Stiffness of the reference area/volume barrier (eq. 21); 0: the contact barrier's stiffness, or (h^2) E / w_hat without contact.");
+      prm.declare_entry("quadrature subdivisions", "0", Patterns::Integer(0), "Transfer quadrature on each candidate cell: the Witherden-Vincent rule of 5 points per direction, repeated on n^dim sub-cells (the predictor has kinks inside candidate cells, and the outer solve exploits quadrature error). 0: 64 for rods, 1 for triangles and tetrahedra.");
       prm.declare_entry("epsilon r", "1e-6", Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
       prm.declare_entry("sliding tolerance", "1e-6", Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
       prm.declare_entry("max iterations", "100", Patterns::Integer(1), "Outer iterations per step.");
@@ -377,6 +378,7 @@ namespace ritr
     s.adaptivity.projection        = prm.get("projection");
     s.adaptivity.admissibility     = prm.get("admissibility");
     s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
+    s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
     s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
     s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
     s.adaptivity.max_iterations    = prm.get_integer("max iterations");

@@ -141,12 +141,14 @@ namespace ritr
       }
     settings.epsilon_r = a.epsilon_r * std::sqrt(diagonal2);
     // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
-    // integrand (kinks inside candidate cells) far better than low-order rules.
+    // integrand (kinks inside candidate cells) far better than low-order rules. A rod's cells
+    // are cheap, so there the rule is repeated on sub-cells by default.
+    const unsigned int subdivisions = a.quadrature_subdivisions > 0 ? a.quadrature_subdivisions : (dim == 1 ? 64 : 1);
     const std::string &file = scene_.parameter_file;
     try
       {
         ritr_ = std::make_unique<RitrSolver<dim>>(mesh_, *bulk_, contact_.get(), *implicit_step_, settings,
-                                                  witherden_vincent_rule<dim>(5));
+                                                  transfer::composite_rule(witherden_vincent_rule<dim>(5), subdivisions));
       }
     catch (const std::invalid_argument &e)
       {

@@ -71,6 +71,10 @@ namespace ritr
     double          transfer_seconds() const { return transfer_seconds_; }
 
   private:
+    // Appends g_up M^-1 g_pu, the part of the uncorrected inertia's u-Hessian that comes from
+    // the projected predictor following the mesh (see derivatives()).
+    void add_projection_response(const typename BulkEnergy<dim>::JointDerivatives &kinetic, Eigen::Index n_u,
+                                 Triplets &huu) const;
     bool uses_transfer() const { return dynamic_ && projection_ == PredictorProjection::in_optimization; }
     bool adds_projected_predictor() const { return uses_transfer() && inertia_ == InertiaForm::uncorrected; }
 

@@ -60,6 +60,7 @@ namespace ritr
     double      epsilon_r         = 1e-6;         // on |du|_inf, in units of the mesh's size
     double      sliding_tolerance = 1e-6;         // eps_b
     double      measure_barrier_stiffness = 0;    // 0: automatic
+    unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic
     unsigned    max_iterations    = 100;
   };
 

@@ -55,6 +55,8 @@ namespace ritr
     const Eigen::VectorXd  &reference() const { return u_; }
     double                  time() const { return time_; }
     const std::vector<StepReport> &history() const { return history_; }
+    // Invariant checks that failed so far, one line each (also in summary.json).
+    const std::vector<std::string> &invariant_violations() const { return invariant_violations_; }
     const BulkEnergy<dim>  &bulk_energy() const { return *bulk_; }
     const NewtonSolver     &newton_solver() const { return implicit_step_->newton(); }
     // Physical contact force on every body node (zero without contact).
