@@ -1,8 +1,10 @@
 #pragma once
 // Central finite differences of scalar and vector functions, for derivative checks.
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include <functional>
+#include <vector>
 
 namespace ritr::test_support
 {
@@ -41,6 +43,15 @@ namespace ritr::test_support
         j.col(i) = (fp - fm) / (2 * step);
       }
     return j;
+  }
+
+  // A dense matrix from triplets (duplicates summed), to compare with differences.
+  inline Eigen::MatrixXd dense(const std::vector<Eigen::Triplet<double>> &t, const Eigen::Index rows,
+                               const Eigen::Index cols)
+  {
+    Eigen::SparseMatrix<double> s(rows, cols);
+    s.setFromTriplets(t.begin(), t.end());
+    return Eigen::MatrixXd(s);
   }
 
   // Relative error that is meaningful for both large and near-zero quantities.

@@ -12,13 +12,6 @@ using namespace ritr;
 
 namespace
 {
-  Eigen::MatrixXd dense(const std::vector<Eigen::Triplet<double>> &t, Eigen::Index rows, Eigen::Index cols)
-  {
-    Eigen::SparseMatrix<double> s(rows, cols);
-    s.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(s);
-  }
-
   template <int dim>
   void check_weight_derivatives()
   {
@@ -76,7 +69,7 @@ namespace
       contact.set_reference(u);
       return r.gu;
     };
-    EXPECT_LT(test_support::relative_error(dense(d.huu, u.size(), u.size()), test_support::fd_jacobian(gu_at, u, 1e-6)),
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.huu, u.size(), u.size()), test_support::fd_jacobian(gu_at, u, 1e-6)),
               1e-5);
 
     const auto gx_at = [&](const Eigen::VectorXd &v) {
@@ -86,7 +79,7 @@ namespace
       contact.set_reference(u);
       return g;
     };
-    EXPECT_LT(test_support::relative_error(dense(d.hxu, z.size(), u.size()), test_support::fd_jacobian(gx_at, u, 1e-6)),
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.hxu, z.size(), u.size()), test_support::fd_jacobian(gx_at, u, 1e-6)),
               1e-5);
   }
 } // namespace

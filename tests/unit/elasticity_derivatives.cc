@@ -12,13 +12,6 @@ using namespace ritr;
 
 namespace
 {
-  Eigen::MatrixXd dense(const Triplets &t, const Eigen::Index n, const Eigen::Index m)
-  {
-    Eigen::SparseMatrix<double> s(n, m);
-    s.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(s);
-  }
-
   template <int dim>
   void check_all_derivatives(const MaterialModel model)
   {
@@ -54,13 +47,13 @@ namespace
       energy.add_gradient(y, u, r);
       return r;
     };
-    EXPECT_LT(test_support::relative_error(dense(h, n, n), test_support::fd_jacobian(g_x, x, 1e-6)), 1e-6);
+    EXPECT_LT(test_support::relative_error(test_support::dense(h, n, n), test_support::fd_jacobian(g_x, x, 1e-6)), 1e-6);
 
     // Joint derivatives agree with the fast path and with differences in u.
     typename BulkEnergy<dim>::JointDerivatives joint;
     energy.joint_derivatives(x, u, ReferenceBlock::exact, joint);
     EXPECT_LT(test_support::relative_error(joint.gx, g), 1e-10);
-    EXPECT_LT(test_support::relative_error(dense(joint.hxx, n, n), dense(h, n, n)), 1e-10);
+    EXPECT_LT(test_support::relative_error(test_support::dense(joint.hxx, n, n), test_support::dense(h, n, n)), 1e-10);
     const auto f_u = [&](const Eigen::VectorXd &v) { return energy.value(x, v); };
     EXPECT_LT(test_support::relative_error(joint.gu, test_support::fd_gradient(f_u, u, 1e-7)), 1e-6);
     const auto gu_of_u = [&](const Eigen::VectorXd &v) {
@@ -68,21 +61,21 @@ namespace
       energy.joint_derivatives(x, v, ReferenceBlock::exact, j);
       return j.gu;
     };
-    EXPECT_LT(test_support::relative_error(dense(joint.huu, n, n), test_support::fd_jacobian(gu_of_u, u, 1e-7)),
+    EXPECT_LT(test_support::relative_error(test_support::dense(joint.huu, n, n), test_support::fd_jacobian(gu_of_u, u, 1e-7)),
               1e-5);
     const auto gx_of_u = [&](const Eigen::VectorXd &v) {
       Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
       energy.add_gradient(x, v, r);
       return r;
     };
-    EXPECT_LT(test_support::relative_error(dense(joint.hxu, n, n), test_support::fd_jacobian(gx_of_u, u, 1e-7)),
+    EXPECT_LT(test_support::relative_error(test_support::dense(joint.hxu, n, n), test_support::fd_jacobian(gx_of_u, u, 1e-7)),
               1e-5);
 
     // Projected blocks are positive semi-definite even under strong compression.
     const Eigen::VectorXd squashed = 0.3 * test_support::deform(u, dim, 0.0);
     Triplets              hp;
     energy.add_hessian(squashed, u, true, hp);
-    const Eigen::MatrixXd hd = dense(hp, n, n);
+    const Eigen::MatrixXd hd = test_support::dense(hp, n, n);
     EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(hd).eigenvalues().minCoeff(),
               -1e-8 * hd.norm());
   }

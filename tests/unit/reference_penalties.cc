@@ -13,13 +13,6 @@ using namespace ritr;
 
 namespace
 {
-  Eigen::MatrixXd dense(const Triplets &t, const Eigen::Index n)
-  {
-    Eigen::SparseMatrix<double> s(n, n);
-    s.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(s);
-  }
-
   template <int dim>
   std::array<int, 4> count_kinds(const std::vector<SlidingConstraint<dim>> &c)
   {
@@ -93,7 +86,7 @@ void check_barrier_derivatives()
     reference_measure_barrier(mesh, v, w_hat, 2.0, &r);
     return r;
   };
-  EXPECT_LT(test_support::relative_error(dense(h, g.size()), test_support::fd_jacobian(grad, mesh.reference, step)),
+  EXPECT_LT(test_support::relative_error(test_support::dense(h, g.size(), g.size()), test_support::fd_jacobian(grad, mesh.reference, step)),
             1e-5);
   // Pushing a node through the opposite facet of its element makes the barrier infinite.
   Eigen::VectorXd flat = mesh.reference;

@@ -15,13 +15,6 @@ using namespace ritr;
 
 namespace
 {
-  Eigen::MatrixXd dense(const Triplets &t, const Eigen::Index n, const Eigen::Index m)
-  {
-    Eigen::SparseMatrix<double> s(n, m);
-    s.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(s);
-  }
-
   Eigen::VectorXd jitter(const Eigen::VectorXd &u, const double size, const unsigned int seed)
   {
     std::mt19937                           rng(seed);
@@ -75,10 +68,10 @@ namespace
     const auto g_x_of_x = [&](const Eigen::VectorXd &y) {
       return Eigen::VectorXd(derivatives(y, u, ReferenceBlock::exact).gx);
     };
-    EXPECT_LT(test_support::relative_error(dense(d.huu, n, n), test_support::fd_jacobian(g_u, u, step)), tolerance);
-    EXPECT_LT(test_support::relative_error(dense(d.hxu, n, n), test_support::fd_jacobian(g_x_of_u, u, step)),
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.huu, n, n), test_support::fd_jacobian(g_u, u, step)), tolerance);
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.hxu, n, n), test_support::fd_jacobian(g_x_of_u, u, step)),
               tolerance);
-    EXPECT_LT(test_support::relative_error(dense(d.hxx, n, n), test_support::fd_jacobian(g_x_of_x, x, step)),
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.hxx, n, n), test_support::fd_jacobian(g_x_of_x, x, step)),
               tolerance);
 
     // The truncated Hessian's block, taken along moves that carry x with u, is the second
@@ -92,7 +85,7 @@ namespace
           const auto            e = derivatives(y, w, ReferenceBlock::exact);
           return Eigen::VectorXd(e.gu + e.gx);
         };
-        EXPECT_LT(test_support::relative_error(dense(following.huu, n, n), test_support::fd_jacobian(g_follow, u, step)),
+        EXPECT_LT(test_support::relative_error(test_support::dense(following.huu, n, n), test_support::fd_jacobian(g_follow, u, step)),
                   tolerance);
       }
   }
