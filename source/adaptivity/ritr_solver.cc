@@ -213,8 +213,9 @@ namespace ritr
         objective_.set_candidate(r.u);
         const auto d = objective_.derivatives(
           r.z, r.u, truncated ? ReferenceBlock::following : ReferenceBlock::exact, !truncated);
-        const Eigen::VectorXd g  = basis_ * (basis_.transpose() * d.gu);
-        Eigen::VectorXd       du = basis_ * solve_outer(outer_hessian(d), -(basis_.transpose() * d.gu), r);
+        const Eigen::VectorXd g_reduced = basis_.transpose() * d.gu;
+        const Eigen::VectorXd g         = basis_ * g_reduced;
+        Eigen::VectorXd       du        = basis_ * solve_outer(outer_hessian(d), -g_reduced, r);
         // Newton steps are trusted up to half the initial smallest cell size. Where the outer
         // Hessian nearly vanishes (flat, or concave once projected) the solve returns a huge
         // or non-finite step: then steepest descent of that length instead.
