@@ -5,7 +5,6 @@
 #include <Eigen/Cholesky>
 
 #include <tbb/blocked_range.h>
-#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -102,10 +101,13 @@ namespace ritr
                                  " but no material with that id is defined");
   }
 
+  // Reductions below are deterministic: the cell range is split the same way and partial
+  // sums are joined in the same order on any number of threads, so a scene gives the same
+  // iterates on one thread and on many.
   template <int dim>
   double BulkEnergy<dim>::value(const Eigen::VectorXd &x, const Eigen::VectorXd &u) const
   {
-    return tbb::parallel_reduce(
+    return tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), grain), 0.0,
       [&](const tbb::blocked_range<std::size_t> &range, double sum) {
         CellNodes<dim, double> xe, ue, pe;
@@ -125,11 +127,13 @@ namespace ritr
   void BulkEnergy<dim>::add_gradient(const Eigen::VectorXd &x, const Eigen::VectorXd &u,
                                      Eigen::VectorXd &g) const
   {
-    tbb::combinable<Eigen::VectorXd> partial([&] { return Eigen::VectorXd::Zero(g.size()).eval(); });
+    // Each cell writes its own slice of cell_gradients in parallel; the scatter into g then
+    // runs in cell order, so the sum is the same on any number of threads.
+    constexpr int n = dim * (dim + 1);
+    std::vector<double> cell_gradients(static_cast<std::size_t>(mesh_.n_cells()) * n);
     const auto &mass = unit_mass_coefficients<dim>();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh_.n_cells(), grain),
                       [&](const tbb::blocked_range<std::size_t> &range) {
-                        Eigen::VectorXd       &local = partial.local();
                         CellNodes<dim, double> xe, ue, pe;
                         for (std::size_t c = range.begin(); c != range.end(); ++c)
                           {
@@ -140,6 +144,7 @@ namespace ritr
                             gather<dim>(x_pred_, cell, pe);
                             const auto geo = cell_geometry<dim>(xe, ue);
                             const auto P   = first_piola_stress<dim>(mat, geo.F);
+                            double    *out = cell_gradients.data() + c * n;
                             for (int a = 0; a <= dim; ++a)
                               for (int k = 0; k < dim; ++k)
                                 {
@@ -152,11 +157,13 @@ namespace ritr
                                     for (int b = 0; b <= dim; ++b)
                                       d += weights_.inertia * mat.density * geo.measure * mass[a][b] *
                                            (xe[b][k] - pe[b][k]);
-                                  local[cell[a] * dim + k] += d;
+                                  out[a * dim + k] = d;
                                 }
                           }
                       });
-    partial.combine_each([&](const Eigen::VectorXd &v) { g += v; });
+    for (std::size_t c = 0; c < mesh_.n_cells(); ++c)
+      for (int i = 0; i < n; ++i)
+        g[mesh_.cells[c][i / dim] * dim + i % dim] += cell_gradients[c * n + i];
   }
 
   template <int dim>

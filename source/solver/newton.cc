@@ -2,9 +2,29 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace ritr
 {
+  namespace
+  {
+    // Round-off of an energy value: it is a sum of many terms of about its own size, each
+    // rounded to machine precision, so differences below ~1000 ulps carry no information.
+    double energy_round_off(const double energy)
+    {
+      return 1e3 * std::numeric_limits<double>::epsilon() * std::abs(energy);
+    }
+
+    double free_norm(const Eigen::VectorXd &v, const std::vector<int> &free_index)
+    {
+      double sum = 0;
+      for (Eigen::Index i = 0; i < v.size(); ++i)
+        if (free_index[i] >= 0)
+          sum += v[i] * v[i];
+      return std::sqrt(sum);
+    }
+  } // namespace
+
   NewtonResult NewtonSolver::minimize(NewtonObjective &objective, Eigen::VectorXd &z,
                                       const std::vector<bool> &kinematic,
                                       const Eigen::VectorXd &targets, const NewtonSettings &settings)
@@ -83,11 +103,14 @@ namespace ritr
 
         // Backtracking from the CCD-certified step. While prescribed entries are still
         // moving the direction need not be a descent direction, so only finiteness (no
-        // inversion) is required then; afterwards Armijo's sufficient decrease.
+        // inversion) is required then; afterwards Armijo's sufficient decrease -- judged on
+        // the gradient norm once the predicted decrease is below the energy's round-off.
         double       alpha      = std::min(1.0, objective.max_step(z, dz));
         const double decrease   = g.dot(dz);
         const bool   use_armijo = !kinematic_pending;
-        Eigen::VectorXd trial;
+        const double round_off  = energy_round_off(e0);
+        const double gradient_norm = free_norm(g, free_index);
+        Eigen::VectorXd trial, trial_gradient(n);
         for (;; alpha *= 0.5)
           {
             ++result.line_search_trials;
@@ -104,7 +127,22 @@ namespace ritr
               }
             trial          = z + alpha * dz;
             const double e = objective.value(trial);
-            if (std::isfinite(e) && (!use_armijo || e <= e0 + settings.armijo * alpha * decrease))
+            if (!std::isfinite(e))
+              continue;
+            if (!use_armijo)
+              break;
+            if (-alpha * decrease > round_off)
+              {
+                if (e <= e0 + settings.armijo * alpha * decrease)
+                  break;
+                continue;
+              }
+            // The energy cannot resolve this step: an Armijo test on it passes or fails by
+            // round-off, which once stalled Newton on "accepted" steps of 1e-6 that changed
+            // nothing. The gradient, far from round-off, still tells progress.
+            trial_gradient.setZero();
+            objective.gradient(trial, trial_gradient);
+            if (free_norm(trial_gradient, free_index) < gradient_norm)
               break;
           }
         z = trial;

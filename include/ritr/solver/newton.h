@@ -3,7 +3,8 @@
 // prescribed ("kinematic") entries -- Dirichlet nodes and scripted obstacle vertices -- are
 // driven to their targets inside the same line search, so that continuous collision
 // detection sees their motion too. Armijo backtracking starts from the largest step that
-// CCD certifies as intersection-free.
+// CCD certifies as intersection-free; where the predicted decrease is below the energy's
+// round-off, a trial is accepted when it lowers the norm of the free gradient instead.
 #include <ritr/solver/sparse_cholesky.h>
 
 #include <Eigen/Sparse>
