@@ -5,19 +5,24 @@
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
 namespace ritr
 {
+  // Bodies, conditions and obstacles keep the name of their .prm subsection ("Body 2") for
+  // messages; the enabled ones are numbered without gaps.
   struct BodyScene
   {
+    std::string     section;
     BodyDescription geometry;
     std::string     initial_velocity;  // vector expression in x,y,z ("0; -1")
   };
 
   struct DirichletScene
   {
+    std::string               section;
     std::vector<unsigned int> boundary_ids;  // nodes on these boundary facets
     std::string               region;        // or nodes where this expression in x,y,z > 0
     std::string               displacement;  // vector expression in x,y,z,t
@@ -25,6 +30,7 @@ namespace ritr
 
   struct ObstacleScene
   {
+    std::string         section;
     std::string         type;  // plane|box|spikes|punch|file
     std::string         file;  // .obj (3D triangles / 2D lines) or .msh surface
     std::vector<double> point{0, 0, 0};   // plane point, box/punch centre, first spike tip base
@@ -93,7 +99,13 @@ namespace ritr
     SolverScene                 solver;
     AdaptivityScene             adaptivity;
 
+    // The line of each entry set in the parameter file ("Body 0/radius" -> 12).
+    std::map<std::string, unsigned int> entry_lines;
+
     bool dynamic() const { return mode == "dynamic"; }
     unsigned int n_steps() const;
+    // The start of a message about `entry`: "FILE:LINE: ENTRY", or "FILE: ENTRY" when the
+    // entry is not set in the file.
+    std::string where(const std::string &entry) const;
   };
 } // namespace ritr
