@@ -220,6 +220,9 @@ namespace ritr
         throw InputError(fold_parser_message(e.what(), file));
       }
 
+    if (!scene_file.sets_an_entry)
+      throw InputError(file + ": sets no entry (an empty scene would run every default)");
+
     Scene s;
     s.parameter_file   = file;
     s.entry_lines      = scene_file.lines;

@@ -61,7 +61,6 @@ namespace ritr
     std::vector<std::string> sections;
     std::stringstream        lines(scene.text);
     std::string              physical, statement;
-    bool                     sets_an_entry = false;
     for (unsigned int n = 1; std::getline(lines, physical); ++n)
       {
         physical = trimmed(physical);
@@ -91,11 +90,9 @@ namespace ritr
         else if (starts_with_keyword(line, "set ", "SET ") && line.find('=') != std::string::npos)
           {
             scene.lines[path(line.substr(4, line.find('=') - 4))] = n;
-            sets_an_entry = true;
+            scene.sets_an_entry = true;
           }
       }
-    if (!sets_an_entry)
-      throw InputError(file + ": sets no entry (an empty scene would run every default)");
     return scene;
   }
 
@@ -120,6 +117,8 @@ namespace ritr
         if (!line.empty())
           folded += (folded.empty() ? "" : " ") + shortened_line(line);
       }
-    return folded.empty() ? file + ": malformed parameter file" : folded;
+    if (folded.compare(0, file.size(), file) != 0)
+      folded = file + ": " + (folded.empty() ? "malformed parameter file" : folded);
+    return folded;
   }
 } // namespace ritr

@@ -1,7 +1,7 @@
 #pragma once
-// A .prm file read before deal.II parses it: the checks the parser does not make (a
-// directory, a scene that sets nothing) and the line where each entry is set, so that
-// messages can say FILE:LINE. Also folds deal.II's multi-line parser messages into one line.
+// A .prm file read before deal.II parses it, for what the parser does not tell: whether it
+// sets anything at all (an empty scene would run every default) and the line where each
+// entry is set, so that messages can say FILE:LINE. Also folds deal.II's multi-line parser messages into one line.
 #include <map>
 #include <string>
 
@@ -13,9 +13,10 @@ namespace ritr
     // "Subsection/entry" (or "entry" at the top level, "Subsection" for the section itself)
     // -> the line that sets it last.
     std::map<std::string, unsigned int> lines;
+    bool                                sets_an_entry = false;  // a `set` statement exists
   };
 
-  // Throws InputError when `file` is not a readable file that sets at least one entry.
+  // Throws InputError when `file` is a folder or cannot be read.
   SceneFile read_scene_file(const std::string &file);
 
   // deal.II's "Line <3> of file <f>: The entry value\n  ...\n  for the entry named ..." as
