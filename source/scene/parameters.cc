@@ -199,16 +199,219 @@ namespace ritr
     prm.print_parameters(out, ParameterHandler::OutputStyle::PRM);
   }
 
+  namespace
+  {
+    // The scene of a parsed parameter file, with every check that needs more than a pattern.
+    Scene validated_scene(ParameterHandler &prm, const SceneFile &scene_file, const std::string &file)
+    {
+      Scene s;
+      s.parameter_file   = file;
+      s.entry_lines      = scene_file.lines;
+      s.dimension        = prm.get_integer("dimension");
+      s.mode             = prm.get("mode");
+      s.time_step        = prm.get_double("time step");
+      s.end_time         = prm.get_double("end time");
+      s.output_directory = prm.get("output directory");
+      s.output_every     = prm.get_integer("output every");
+      s.write_nodal_csv  = prm.get_bool("write nodal csv");
+      const int dim      = s.dimension;
+      const auto fail    = [&](const std::string &entry, const std::string &what) {
+        throw InputError(s.where(entry) + ": " + what);
+      };
+      if (!(s.time_step > 0))
+        fail("time step", "must be positive");
+      if (!(s.end_time > 0))
+        fail("end time", "must be positive");
+      if (s.time_step > s.end_time)
+        fail("time step", "exceeds the end time (" + prm.get("end time") + ")");
+      // The last step lands on the end time: a whole number of steps, countable in an int.
+      const double steps = s.end_time / s.time_step;
+      if (!(steps <= std::numeric_limits<int>::max()))
+        fail("time step", "gives more than " + std::to_string(std::numeric_limits<int>::max()) + " steps");
+      if (std::abs(steps - std::round(steps)) > 1e-6)
+        fail("end time", "is not a whole number of time steps of " + prm.get("time step") + " (" +
+                           std::to_string(steps) + " steps)");
+      if (s.output_directory.empty())
+        fail("output directory", "is empty");
+      if (const std::string problem = output_directory_problem(s.output_directory); !problem.empty())
+        fail("output directory", "'" + shortened(s.output_directory) + "' " + problem);
+
+      for (unsigned int b = 0; b < max_bodies; ++b)
+        {
+          const std::string name = "Body " + std::to_string(b);
+          prm.enter_subsection(name);
+          if (prm.get_bool("enabled"))
+            {
+              BodyScene body;
+              body.section        = name;
+              auto     &g         = body.geometry;
+              g.shape             = prm.get("shape");
+              g.file              = resolve(prm.get("file"), file);
+              g.lower             = get_numbers(prm, s, name, "lower", dim);
+              g.upper             = get_numbers(prm, s, name, "upper", dim);
+              g.subdivisions      = to_unsigned(get_numbers(prm, s, name, "subdivisions", dim));
+              g.center            = get_numbers(prm, s, name, "center", dim);
+              g.radius            = prm.get_double("radius");
+              g.shape_refinements = prm.get_integer("shape refinements");
+              g.refinements       = prm.get_integer("refinements");
+              g.translation       = get_numbers(prm, s, name, "translation", dim);
+              g.material_id       = prm.get_integer("material id");
+              body.initial_velocity = vector_expression(prm, "initial velocity", dim);
+              if (g.shape == "file" && g.file.empty())
+                fail(name + "/file", "shape = file needs a mesh file");
+              if (g.shape == "file" && !std::ifstream(g.file))
+                fail(name + "/file", "cannot open mesh file '" + shortened(g.file) + "'");
+              if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
+                for (int k = 0; k < dim; ++k)
+                  if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
+                      !(g.upper[k] > g.lower[k]))
+                    fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
+              check_expression(dim, body.initial_velocity, dim, s.where(name + "/initial velocity"));
+              s.bodies.push_back(body);
+            }
+          prm.leave_subsection();
+        }
+      if (s.bodies.empty())
+        fail("Body 0/enabled", "the scene has no body");
+
+      for (unsigned int m = 0; m < max_materials; ++m)
+        {
+          prm.enter_subsection("Material " + std::to_string(m));
+          Material mat;
+          mat.model          = parse_material_model(prm.get("model"));
+          mat.youngs_modulus = prm.get_double("youngs modulus");
+          mat.poisson_ratio  = prm.get_double("poisson ratio");
+          mat.density        = prm.get_double("density");
+          if (!(mat.youngs_modulus > 0) || !(mat.density > 0) || !(mat.poisson_ratio < 0.5))
+            fail("Material " + std::to_string(m), "needs E > 0, density > 0 and Poisson ratio < 0.5");
+          s.materials.push_back(mat);
+          prm.leave_subsection();
+        }
+
+      prm.enter_subsection("Gravity");
+      s.gravity     = get_numbers(prm, s, "Gravity", "acceleration", dim);
+      s.gravity.resize(3, 0.0);
+      s.load_factor = prm.get("load factor");
+      check_expression(dim, s.load_factor, 1, s.where("Gravity/load factor"));
+      prm.leave_subsection();
+
+      for (unsigned int d = 0; d < max_dirichlet; ++d)
+        {
+          const std::string name = "Dirichlet " + std::to_string(d);
+          prm.enter_subsection(name);
+          if (prm.get_bool("enabled"))
+            {
+              DirichletScene bc;
+              bc.section      = name;
+              bc.boundary_ids = to_unsigned(get_doubles(prm, "boundary ids"));
+              bc.region       = prm.get("region");
+              bc.displacement = vector_expression(prm, "displacement", dim);
+              if (bc.boundary_ids.empty() == bc.region.empty())
+                fail(name, "give exactly one of 'boundary ids' and 'region'");
+              if (!bc.region.empty())
+                check_expression(dim, bc.region, 1, s.where(name + "/region"));
+              check_expression(dim, bc.displacement, dim, s.where(name + "/displacement"));
+              s.dirichlet.push_back(bc);
+            }
+          prm.leave_subsection();
+        }
+
+      for (unsigned int o = 0; o < max_obstacles; ++o)
+        {
+          const std::string name = "Obstacle " + std::to_string(o);
+          prm.enter_subsection(name);
+          ObstacleScene ob;
+          ob.section = name;
+          ob.type    = prm.get("type");
+          if (ob.type != "none")
+            {
+              ob.file            = resolve(prm.get("file"), file);
+              const bool box     = ob.type == "box" || ob.type == "punch";
+              ob.point           = get_numbers(prm, s, name, "point", dim);
+              ob.normal          = get_numbers(prm, s, name, "normal", dim);
+              ob.size            = get_numbers(prm, s, name, "size", box ? dim : 1);
+              ob.count           = prm.get_integer("count");
+              ob.spike_height    = prm.get_double("spike height");
+              ob.translation     = vector_expression(prm, "translation", dim);
+              ob.rotation_angle  = prm.get("rotation angle");
+              ob.rotation_axis   = get_numbers(prm, s, name, "rotation axis", 3);
+              ob.rotation_center = get_numbers(prm, s, name, "rotation center", dim);
+              for (auto *v : {&ob.point, &ob.normal, &ob.size, &ob.rotation_axis, &ob.rotation_center})
+                v->resize(3, 0.0);
+              if (ob.type == "file" && !std::ifstream(ob.file))
+                fail(name + "/file", "cannot open obstacle file '" + shortened(ob.file) + "'");
+              if (dim == 1 && ob.type != "plane")
+                fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
+              check_expression(dim, ob.translation, dim, s.where(name + "/translation"));
+              check_expression(dim, ob.rotation_angle, 1, s.where(name + "/rotation angle"));
+              s.obstacles.push_back(ob);
+            }
+          prm.leave_subsection();
+        }
+
+      prm.enter_subsection("Contact");
+      s.contact.enabled              = prm.get_bool("enabled");
+      s.contact.dhat                 = prm.get_double("dhat");
+      const std::string stiffness    = prm.get("barrier stiffness");
+      if (stiffness != "adaptive")
+        {
+          char *end                   = nullptr;
+          s.contact.barrier_stiffness = std::strtod(stiffness.c_str(), &end);
+          if (end == stiffness.c_str() || *end != '\0' || !(s.contact.barrier_stiffness > 0) ||
+              !std::isfinite(s.contact.barrier_stiffness))
+            fail("Contact/barrier stiffness", "must be 'adaptive' or a positive number");
+        }
+      s.contact.friction_coefficient = prm.get_double("friction coefficient");
+      s.contact.epsilon_v            = prm.get_double("epsilon v");
+      s.contact.friction_iterations  = prm.get_integer("friction iterations");
+      s.contact.self_contact         = prm.get_bool("self contact");
+      if (!(s.contact.dhat > 0))
+        fail("Contact/dhat", "must be positive");
+      if (s.contact.enabled && s.contact.friction_coefficient > 0 && !(s.contact.epsilon_v > 0))
+        fail("Contact/epsilon v", "must be positive when the friction coefficient is");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Adaptivity");
+      s.adaptivity.enabled           = prm.get_bool("enabled");
+      s.adaptivity.hessian           = prm.get("hessian");
+      s.adaptivity.inertia           = prm.get("inertia");
+      s.adaptivity.projection        = prm.get("projection");
+      s.adaptivity.admissibility     = prm.get("admissibility");
+      s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
+      s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
+      s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
+      s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
+      s.adaptivity.max_iterations    = prm.get_integer("max iterations");
+      prm.leave_subsection();
+      prm.enter_subsection("Solver");
+      s.solver.newton_tolerance = prm.get_double("newton tolerance");
+      s.solver.static_tolerance = prm.get_double("static tolerance");
+      s.solver.max_iterations   = prm.get_integer("max iterations");
+      s.solver.threads          = prm.get_integer("threads");
+      prm.leave_subsection();
+      return s;
+    }
+  } // namespace
+
   Scene read_scene(const std::string &file)
   {
-    const SceneFile scene_file = read_scene_file(file);
+    const SceneFile  scene_file = read_scene_file(file);
     ParameterHandler prm;
     declare(prm);
     try
       {
         std::istringstream text(scene_file.text);
         prm.parse_input(text, file, "", false);
+        if (!scene_file.sets_an_entry)
+          throw InputError(file + ": sets no entry (an empty scene would run every default)");
+        return validated_scene(prm, scene_file, file);
       }
+    catch (const InputError &)
+      {
+        throw;
+      }
+    // deal.II reports what its parser rejects, or a value it cannot convert, in its own
+    // exceptions: several lines that name the file or the entry.
     catch (const dealii::ExceptionBase &e)
       {
         std::stringstream ss;
@@ -219,195 +422,5 @@ namespace ritr
       {
         throw InputError(fold_parser_message(e.what(), file));
       }
-
-    if (!scene_file.sets_an_entry)
-      throw InputError(file + ": sets no entry (an empty scene would run every default)");
-
-    Scene s;
-    s.parameter_file   = file;
-    s.entry_lines      = scene_file.lines;
-    s.dimension        = prm.get_integer("dimension");
-    s.mode             = prm.get("mode");
-    s.time_step        = prm.get_double("time step");
-    s.end_time         = prm.get_double("end time");
-    s.output_directory = prm.get("output directory");
-    s.output_every     = prm.get_integer("output every");
-    s.write_nodal_csv  = prm.get_bool("write nodal csv");
-    const int dim      = s.dimension;
-    const auto fail    = [&](const std::string &entry, const std::string &what) {
-      throw InputError(s.where(entry) + ": " + what);
-    };
-    if (!(s.time_step > 0))
-      fail("time step", "must be positive");
-    if (!(s.end_time > 0))
-      fail("end time", "must be positive");
-    if (s.time_step > s.end_time)
-      fail("time step", "exceeds the end time (" + prm.get("end time") + ")");
-    // The last step lands on the end time: a whole number of steps, countable in an int.
-    const double steps = s.end_time / s.time_step;
-    if (!(steps <= std::numeric_limits<int>::max()))
-      fail("time step", "gives more than " + std::to_string(std::numeric_limits<int>::max()) + " steps");
-    if (std::abs(steps - std::round(steps)) > 1e-6)
-      fail("end time", "is not a whole number of time steps of " + prm.get("time step") + " (" +
-                         std::to_string(steps) + " steps)");
-    if (s.output_directory.empty())
-      fail("output directory", "is empty");
-    if (const std::string problem = output_directory_problem(s.output_directory); !problem.empty())
-      fail("output directory", "'" + shortened(s.output_directory) + "' " + problem);
-
-    for (unsigned int b = 0; b < max_bodies; ++b)
-      {
-        const std::string name = "Body " + std::to_string(b);
-        prm.enter_subsection(name);
-        if (prm.get_bool("enabled"))
-          {
-            BodyScene body;
-            body.section        = name;
-            auto     &g         = body.geometry;
-            g.shape             = prm.get("shape");
-            g.file              = resolve(prm.get("file"), file);
-            g.lower             = get_numbers(prm, s, name, "lower", dim);
-            g.upper             = get_numbers(prm, s, name, "upper", dim);
-            g.subdivisions      = to_unsigned(get_numbers(prm, s, name, "subdivisions", dim));
-            g.center            = get_numbers(prm, s, name, "center", dim);
-            g.radius            = prm.get_double("radius");
-            g.shape_refinements = prm.get_integer("shape refinements");
-            g.refinements       = prm.get_integer("refinements");
-            g.translation       = get_numbers(prm, s, name, "translation", dim);
-            g.material_id       = prm.get_integer("material id");
-            body.initial_velocity = vector_expression(prm, "initial velocity", dim);
-            if (g.shape == "file" && g.file.empty())
-              fail(name + "/file", "shape = file needs a mesh file");
-            if (g.shape == "file" && !std::ifstream(g.file))
-              fail(name + "/file", "cannot open mesh file '" + shortened(g.file) + "'");
-            if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
-              for (int k = 0; k < dim; ++k)
-                if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
-                    !(g.upper[k] > g.lower[k]))
-                  fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
-            check_expression(dim, body.initial_velocity, dim, s.where(name + "/initial velocity"));
-            s.bodies.push_back(body);
-          }
-        prm.leave_subsection();
-      }
-    if (s.bodies.empty())
-      fail("Body 0/enabled", "the scene has no body");
-
-    for (unsigned int m = 0; m < max_materials; ++m)
-      {
-        prm.enter_subsection("Material " + std::to_string(m));
-        Material mat;
-        mat.model          = parse_material_model(prm.get("model"));
-        mat.youngs_modulus = prm.get_double("youngs modulus");
-        mat.poisson_ratio  = prm.get_double("poisson ratio");
-        mat.density        = prm.get_double("density");
-        if (!(mat.youngs_modulus > 0) || !(mat.density > 0) || !(mat.poisson_ratio < 0.5))
-          fail("Material " + std::to_string(m), "needs E > 0, density > 0 and Poisson ratio < 0.5");
-        s.materials.push_back(mat);
-        prm.leave_subsection();
-      }
-
-    prm.enter_subsection("Gravity");
-    s.gravity     = get_numbers(prm, s, "Gravity", "acceleration", dim);
-    s.gravity.resize(3, 0.0);
-    s.load_factor = prm.get("load factor");
-    check_expression(dim, s.load_factor, 1, s.where("Gravity/load factor"));
-    prm.leave_subsection();
-
-    for (unsigned int d = 0; d < max_dirichlet; ++d)
-      {
-        const std::string name = "Dirichlet " + std::to_string(d);
-        prm.enter_subsection(name);
-        if (prm.get_bool("enabled"))
-          {
-            DirichletScene bc;
-            bc.section      = name;
-            bc.boundary_ids = to_unsigned(get_doubles(prm, "boundary ids"));
-            bc.region       = prm.get("region");
-            bc.displacement = vector_expression(prm, "displacement", dim);
-            if (bc.boundary_ids.empty() == bc.region.empty())
-              fail(name, "give exactly one of 'boundary ids' and 'region'");
-            if (!bc.region.empty())
-              check_expression(dim, bc.region, 1, s.where(name + "/region"));
-            check_expression(dim, bc.displacement, dim, s.where(name + "/displacement"));
-            s.dirichlet.push_back(bc);
-          }
-        prm.leave_subsection();
-      }
-
-    for (unsigned int o = 0; o < max_obstacles; ++o)
-      {
-        const std::string name = "Obstacle " + std::to_string(o);
-        prm.enter_subsection(name);
-        ObstacleScene ob;
-        ob.section = name;
-        ob.type    = prm.get("type");
-        if (ob.type != "none")
-          {
-            ob.file            = resolve(prm.get("file"), file);
-            const bool box     = ob.type == "box" || ob.type == "punch";
-            ob.point           = get_numbers(prm, s, name, "point", dim);
-            ob.normal          = get_numbers(prm, s, name, "normal", dim);
-            ob.size            = get_numbers(prm, s, name, "size", box ? dim : 1);
-            ob.count           = prm.get_integer("count");
-            ob.spike_height    = prm.get_double("spike height");
-            ob.translation     = vector_expression(prm, "translation", dim);
-            ob.rotation_angle  = prm.get("rotation angle");
-            ob.rotation_axis   = get_numbers(prm, s, name, "rotation axis", 3);
-            ob.rotation_center = get_numbers(prm, s, name, "rotation center", dim);
-            for (auto *v : {&ob.point, &ob.normal, &ob.size, &ob.rotation_axis, &ob.rotation_center})
-              v->resize(3, 0.0);
-            if (ob.type == "file" && !std::ifstream(ob.file))
-              fail(name + "/file", "cannot open obstacle file '" + shortened(ob.file) + "'");
-            if (dim == 1 && ob.type != "plane")
-              fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
-            check_expression(dim, ob.translation, dim, s.where(name + "/translation"));
-            check_expression(dim, ob.rotation_angle, 1, s.where(name + "/rotation angle"));
-            s.obstacles.push_back(ob);
-          }
-        prm.leave_subsection();
-      }
-
-    prm.enter_subsection("Contact");
-    s.contact.enabled              = prm.get_bool("enabled");
-    s.contact.dhat                 = prm.get_double("dhat");
-    const std::string stiffness    = prm.get("barrier stiffness");
-    if (stiffness != "adaptive")
-      {
-        char *end                   = nullptr;
-        s.contact.barrier_stiffness = std::strtod(stiffness.c_str(), &end);
-        if (end == stiffness.c_str() || *end != '\0' || !(s.contact.barrier_stiffness > 0) ||
-            !std::isfinite(s.contact.barrier_stiffness))
-          fail("Contact/barrier stiffness", "must be 'adaptive' or a positive number");
-      }
-    s.contact.friction_coefficient = prm.get_double("friction coefficient");
-    s.contact.epsilon_v            = prm.get_double("epsilon v");
-    s.contact.friction_iterations  = prm.get_integer("friction iterations");
-    s.contact.self_contact         = prm.get_bool("self contact");
-    if (!(s.contact.dhat > 0))
-      fail("Contact/dhat", "must be positive");
-    if (s.contact.enabled && s.contact.friction_coefficient > 0 && !(s.contact.epsilon_v > 0))
-      fail("Contact/epsilon v", "must be positive when the friction coefficient is");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Adaptivity");
-    s.adaptivity.enabled           = prm.get_bool("enabled");
-    s.adaptivity.hessian           = prm.get("hessian");
-    s.adaptivity.inertia           = prm.get("inertia");
-    s.adaptivity.projection        = prm.get("projection");
-    s.adaptivity.admissibility     = prm.get("admissibility");
-    s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
-    s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
-    s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
-    s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
-    s.adaptivity.max_iterations    = prm.get_integer("max iterations");
-    prm.leave_subsection();
-    prm.enter_subsection("Solver");
-    s.solver.newton_tolerance = prm.get_double("newton tolerance");
-    s.solver.static_tolerance = prm.get_double("static tolerance");
-    s.solver.max_iterations   = prm.get_integer("max iterations");
-    s.solver.threads          = prm.get_integer("threads");
-    prm.leave_subsection();
-    return s;
   }
 } // namespace ritr

@@ -89,7 +89,12 @@ namespace ritr
           sections.pop_back();
         else if (starts_with_keyword(line, "set ", "SET ") && line.find('=') != std::string::npos)
           {
-            scene.lines[path(line.substr(4, line.find('=') - 4))] = n;
+            const std::string entry = path(line.substr(4, line.find('=') - 4));
+            // deal.II skips the pattern check of a value with '{' (its parameter loops).
+            if (line.find('{', line.find('=')) != std::string::npos)
+              throw InputError(file + ":" + std::to_string(n) + ": " + shortened(entry) +
+                               ": '{' is not allowed in a value");
+            scene.lines[entry]  = n;
             scene.sets_an_entry = true;
           }
       }

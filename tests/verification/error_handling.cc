@@ -106,6 +106,46 @@ TEST(ErrorHandling, NonConvergenceKeepsWrittenSteps)
   EXPECT_TRUE(std::filesystem::exists("output/errors/no_convergence/solution-00000.vtu"));
   EXPECT_TRUE(std::filesystem::exists("output/errors/no_convergence/summary.json"));
 }
+// A run owns its directory: the previous run's outputs and stale temporaries go, other
+// files stay, and the summary says whether the run completed.
+TEST(ErrorHandling, RunReplacesThePreviousRun)
+{
+  const std::string file = scene_with("previous_run", ""), out = "output/errors/previous_run/";
+  write_file(out + "summary.json", "{\n  \"complete\": true,\n  \"steps\": 30\n}\n");
+  write_file(out + "log.csv", "step\n" + std::string(30, '\n'));
+  for (const char *old : {"solution-00030.vtu", "reference-00029.vtu", "nodes-00030.csv", "log.csv.tmp",
+                          "solution-00031.vtu.tmp", "notes.txt"})
+    write_file(out + old, "previous run\n");
+  const RunResult r = run_ritr(file);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char *old : {"solution-00030.vtu", "reference-00029.vtu", "nodes-00030.csv", "log.csv.tmp",
+                          "solution-00031.vtu.tmp"})
+    EXPECT_FALSE(std::filesystem::exists(out + old)) << old;
+  EXPECT_TRUE(std::filesystem::exists(out + "notes.txt"));  // not an output of ritr
+  const std::string summary = read_file(out + "summary.json");
+  EXPECT_NE(summary.find("\"complete\": true"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps\": 2"), std::string::npos) << summary;
+  const std::string log = read_file(out + "log.csv");
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 3) << log;
+}
+TEST(ErrorHandling, FailedRunIsNotComplete)
+{
+  const std::string file = scene_with("failed_run", "subsection Solver\n set max iterations = 1\nend\n"
+                                                    "subsection Body 0\n set initial velocity = 0; -3\nend\n");
+  const std::string out  = "output/errors/failed_run/";
+  write_file(out + "summary.json", "{\n  \"complete\": true,\n  \"steps\": 30\n}\n");
+  write_file(out + "log.csv", "step\n" + std::string(30, '\n'));
+  write_file(out + "solution-00030.vtu", "previous run\n");
+  const RunResult r = run_ritr(file);
+  ASSERT_EQ(r.exit_code, 3) << r.output;
+  const std::string summary = read_file(out + "summary.json");
+  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"failure\": \"step 1"), std::string::npos) << summary;
+  const std::string log = read_file(out + "log.csv");
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1) << log;  // the header: step 1 failed
+  EXPECT_FALSE(std::filesystem::exists(out + "solution-00030.vtu"));
+  EXPECT_TRUE(std::filesystem::exists(out + "solution-00000.vtu"));
+}
 TEST(ErrorHandling, FoldedElements)
 {
   // Three triangles around node 1; the last one overlaps the second (folded mesh).
