@@ -68,7 +68,18 @@ namespace ritr
       }
     catch (const std::exception &e)
       {
-        throw InputError(scene.parameter_file + ": Body: " + e.what());
+        // Name the body: only now, rebuild the bodies one at a time to find the one at fault.
+        std::string name = "Body";
+        for (std::size_t b = 0; b < bodies.size() && name == "Body"; ++b)
+          try
+            {
+              build_mesh<dim>({bodies[b]});
+            }
+          catch (const std::exception &)
+            {
+              name = section(scene.bodies[b].section, "Body", b);
+            }
+        throw InputError(scene.where(name) + ": " + e.what());
       }
     u_ = mesh_.reference;
     x_ = u_;

@@ -292,8 +292,16 @@ namespace
       appended("dhat_zero", "Contact/dhat", with_friction(" set dhat = 0")),
       appended("dirichlet_ids_and_region", "Dirichlet 0", dirichlet(" set region = x\n set boundary ids = 1")),
       appended("dirichlet_selects_nothing", "selects no node", dirichlet(" set region = -1")),
-      appended("shape_of_another_dimension", "shape 'box'", body(" set shape = box")),
-      appended("disk_radius_zero", "radius", body(" set shape = disk\n set radius = 0")),
+      appended("shape_of_another_dimension", "Body 0: shape 'box'", body(" set shape = box")),
+      appended("disk_radius_zero", "Body 0: radius", body(" set shape = disk\n set radius = 0")),
+      appended("folded_mesh_in_body_2", "Body 2: the mesh has inverted",
+               "subsection Body 2\n set enabled = true\n set shape = file\n set file = folded.msh\nend\n")
+        .with("folded.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n"
+                            "4 0 1 0\n5 0.9 0.5 0\n$EndNodes\n$Elements\n3\n1 2 2 0 1 1 2 3\n2 2 2 0 1 1 3 4\n"
+                            "3 2 2 0 1 1 3 5\n$EndElements\n"),
+      // deal.II skips the pattern of a value with '{' (its parameter loops).
+      appended("brace_in_selection", "mode: '{' is not allowed", "set mode = {static|dynamic}\n"),
+      appended("brace_in_integer", "Body 0/material id: '{'", body(" set material id = {")),
     };
   }
 
