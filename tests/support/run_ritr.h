@@ -19,6 +19,33 @@ namespace ritr::test_support
     std::string output;  // stdout and stderr together
   };
 
+  // A small valid 2D scene: a strip above a ground plane, two steps. "OUTPUT" stands for its
+  // output directory.
+  inline const std::string small_scene = R"(set dimension = 2
+set time step = 0.01
+set end time = 0.02
+set output directory = OUTPUT
+subsection Body 0
+  set shape = rectangle
+  set upper = 1, 0.2
+  set subdivisions = 4, 1
+  set translation = 0, 0.01
+end
+subsection Obstacle 0
+  set type = plane
+  set point = 0, 0
+end
+subsection Contact
+  set dhat = 1e-3
+end
+)";
+
+  // `text` with its first `from` replaced by `to`.
+  inline std::string replaced(std::string text, const std::string &from, const std::string &to)
+  {
+    return text.replace(text.find(from), from.size(), to);
+  }
+
   inline std::string source_dir() { return std::getenv("RITR_SOURCE_DIR"); }
 
   // `redirections` says where the streams go ("2>&1": both are captured).

@@ -12,33 +12,13 @@ using namespace ritr::test_support;
 
 namespace
 {
-  const char *valid_scene = R"(set dimension = 2
-set time step = 0.01
-set end time = 0.02
-set output directory = OUTPUT
-subsection Body 0
-  set shape = rectangle
-  set upper = 1, 0.2
-  set subdivisions = 4, 1
-  set translation = 0, 0.01
-end
-subsection Obstacle 0
-  set type = plane
-  set point = 0, 0
-end
-subsection Contact
-  set dhat = 1e-3
-end
-)";
-
   std::string scene_with(const std::string &name, const std::string &extra, const std::string &replace = "",
                          const std::string &by = "")
   {
-    std::string text = valid_scene;
-    const std::string out = "output/errors/" + name;
-    text.replace(text.find("OUTPUT"), 6, out);
+    const std::string out  = "output/errors/" + name;
+    std::string       text = replaced(small_scene, "OUTPUT", out);
     if (!replace.empty())
-      text.replace(text.find(replace), replace.size(), by);
+      text = replaced(text, replace, by);
     text += extra;
     std::filesystem::create_directories(out);
     // A previous result that bad input must not touch.
@@ -184,14 +164,12 @@ namespace
 
   BadInput appended(const std::string &name, const std::string &expected, const std::string &extra)
   {
-    return {name, expected, valid_scene + extra, {}};
+    return {name, expected, small_scene + extra, {}};
   }
   BadInput edited(const std::string &name, const std::string &expected, const std::string &replace,
                   const std::string &by)
   {
-    std::string text = valid_scene;
-    text.replace(text.find(replace), replace.size(), by);
-    return {name, expected, text, {}};
+    return {name, expected, replaced(small_scene, replace, by), {}};
   }
   BadInput whole(const std::string &name, const std::string &expected, const std::string &text)
   {

@@ -23,20 +23,10 @@ namespace
 {
   const std::string folder = "output/killed_run", output = folder + "/out", scene = folder + "/scene.prm";
 
-  const char *scene_text = R"(set dimension = 2
-set time step = 0.01
-set end time = 0.3
-set output directory = output/killed_run/out
-subsection Body 0
-  set upper = 1, 0.2
-  set subdivisions = 40, 8
-  set translation = 0, 0.01
-end
-subsection Obstacle 0
-  set type = plane
-  set point = 0, 0
-end
-)";
+  // The small scene, long enough (30 steps, about a second) to be killed while it runs.
+  const std::string scene_text =
+    replaced(replaced(replaced(small_scene, "OUTPUT", output), "set end time = 0.02", "set end time = 0.3"),
+             "set subdivisions = 4, 1", "set subdivisions = 40, 8");
 
   bool ends_with(const std::string &s, const std::string &end)
   {
