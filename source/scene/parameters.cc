@@ -182,25 +182,6 @@ namespace ritr
       return slash == std::string::npos ? path : prm_file.substr(0, slash + 1) + path;
     }
 
-  } // namespace
-
-  unsigned int Scene::n_steps() const { return std::max(1L, std::lround(end_time / time_step)); }
-
-  std::string Scene::where(const std::string &entry) const
-  {
-    const auto line = entry_lines.find(entry);
-    return parameter_file + (line == entry_lines.end() ? "" : ":" + std::to_string(line->second)) + ": " + entry;
-  }
-
-  void print_parameters(std::ostream &out)
-  {
-    ParameterHandler prm;
-    declare(prm);
-    prm.print_parameters(out, ParameterHandler::OutputStyle::PRM);
-  }
-
-  namespace
-  {
     // The scene of a parsed parameter file, with every check that needs more than a pattern.
     Scene validated_scene(ParameterHandler &prm, const SceneFile &scene_file, const std::string &file)
     {
@@ -392,6 +373,21 @@ namespace ritr
       return s;
     }
   } // namespace
+
+  unsigned int Scene::n_steps() const { return std::max(1L, std::lround(end_time / time_step)); }
+
+  std::string Scene::where(const std::string &entry) const
+  {
+    const auto line = entry_lines.find(entry);
+    return parameter_file + (line == entry_lines.end() ? "" : ":" + std::to_string(line->second)) + ": " + entry;
+  }
+
+  void print_parameters(std::ostream &out)
+  {
+    ParameterHandler prm;
+    declare(prm);
+    prm.print_parameters(out, ParameterHandler::OutputStyle::PRM);
+  }
 
   Scene read_scene(const std::string &file)
   {

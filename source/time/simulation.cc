@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace ritr
 {
@@ -85,14 +86,16 @@ namespace ritr
     x_ = u_;
     v_ = Eigen::VectorXd::Zero(u_.size());
     std::vector<Expression<dim>> velocity;
-    for (const auto &b : scene.bodies)
-      velocity.emplace_back(b.initial_velocity, dim);
+    std::vector<std::string>     velocity_entry;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      {
+        velocity.emplace_back(scene.bodies[b].initial_velocity, dim);
+        velocity_entry.push_back(scene.where(section(scene.bodies[b].section, "Body", b) + "/initial velocity"));
+      }
     for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
       {
-        const unsigned int b = mesh_.node_part[i];
-        v_.template segment<dim>(i * dim) =
-          finite_value(velocity[b], mesh_.reference_node(i), 0.0,
-                       scene.where(section(scene.bodies[b].section, "Body", b) + "/initial velocity"));
+        const unsigned int b              = mesh_.node_part[i];
+        v_.template segment<dim>(i * dim) = finite_value(velocity[b], mesh_.reference_node(i), 0.0, velocity_entry[b]);
       }
     load_factor_.emplace(scene.load_factor, 1);
     for (const double t : {0.0, scene.time_step})
@@ -222,13 +225,15 @@ namespace ritr
     const auto       name = [&](const unsigned int d) { return section(scene_.dirichlet[d].section, "Dirichlet", d); };
     for (unsigned int d = 0; d < scene_.dirichlet.size(); ++d)
       {
-        const DirichletScene &bc = scene_.dirichlet[d];
+        const DirichletScene &bc           = scene_.dirichlet[d];
+        const std::string     region_entry = scene_.where(name(d) + "/region");
+        const std::string     displacement_entry = scene_.where(name(d) + "/displacement");
         std::vector<bool>     selected(mesh_.n_nodes(), false);
         if (!bc.region.empty())
           {
             const Expression<dim> region(bc.region, 1);
             for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
-              selected[i] = finite_value(region, mesh_.reference_node(i), 0.0, scene_.where(name(d) + "/region"))[0] > 0;
+              selected[i] = finite_value(region, mesh_.reference_node(i), 0.0, region_entry)[0] > 0;
           }
         else
           for (unsigned int f = 0; f < mesh_.boundary_facets.size(); ++f)
@@ -243,8 +248,7 @@ namespace ritr
             {
               ++count;
               for (const double t : {0.0, scene_.time_step})
-                finite_value(dirichlet_displacements_[d], mesh_.reference_node(i), t,
-                             scene_.where(name(d) + "/displacement"));
+                finite_value(dirichlet_displacements_[d], mesh_.reference_node(i), t, displacement_entry);
               if (condition_of[i] >= 0)
                 {
                   // Two conditions on one node must agree at all times we can check cheaply.

@@ -1,10 +1,10 @@
 // The outputs of a run (the output contract of the design notes): VTU/PVD files, log.csv,
 // summary.json, and the run's ownership of its output directory.
 #include <ritr/common/atomic_file.h>
+#include <ritr/common/wall_clock.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/output/vtk_files.h>
-#include <ritr/common/wall_clock.h>
 #include <ritr/time/simulation.h>
 
 #include <chrono>

@@ -11,26 +11,25 @@
 
 namespace ritr
 {
-  // Bodies, conditions and obstacles keep the name of their .prm subsection ("Body 2") for
-  // messages; the enabled ones are numbered without gaps.
+  // The scene lists only the enabled bodies, conditions and obstacles; `section` keeps the
+  // name of each one's .prm subsection ("Body 2") for messages.
   struct BodyScene
   {
-    std::string     section;
     BodyDescription geometry;
     std::string     initial_velocity;  // vector expression in x,y,z ("0; -1")
+    std::string     section;
   };
 
   struct DirichletScene
   {
-    std::string               section;
     std::vector<unsigned int> boundary_ids;  // nodes on these boundary facets
     std::string               region;        // or nodes where this expression in x,y,z > 0
     std::string               displacement;  // vector expression in x,y,z,t
+    std::string               section;
   };
 
   struct ObstacleScene
   {
-    std::string         section;
     std::string         type;  // plane|box|spikes|punch|file
     std::string         file;  // .obj (3D triangles / 2D lines) or .msh surface
     std::vector<double> point{0, 0, 0};   // plane point, box/punch centre, first spike tip base
@@ -42,6 +41,7 @@ namespace ritr
     std::string         rotation_angle;    // scalar expression in t (radians)
     std::vector<double> rotation_axis{0, 0, 1};
     std::vector<double> rotation_center{0, 0, 0};
+    std::string         section;
   };
 
   struct ContactScene
