@@ -283,6 +283,9 @@ namespace
     };
   }
 
+  // GoogleTest names a case by its name rather than its bytes.
+  void PrintTo(const BadInput &c, std::ostream *out) { *out << c.name; }
+
   class BadInputCorpus : public ::testing::TestWithParam<BadInput>
   {};
 
