@@ -47,6 +47,14 @@ TEST(ErrorHandling, ValidSceneRuns)
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+TEST(ErrorHandling, EveryNodePrescribedRuns)
+{
+  // No free unknown is left: the Newton system is empty, which is no error.
+  const RunResult r = run_ritr(scene_with("all_prescribed", "subsection Dirichlet 0\n set enabled = true\n"
+                                                            " set region = 1\n set displacement = 0; 0.1 * t\nend\n"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
 TEST(ErrorHandling, UnknownEntry) { expect_input_error("unknown", "set time stpe = 0.1\n", "time stpe"); }
 TEST(ErrorHandling, MalformedValue) { expect_input_error("malformed", "", "time step", "set time step = 0.01", "set time step = fast"); }
 TEST(ErrorHandling, MissingMeshFile)
