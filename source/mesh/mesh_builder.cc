@@ -1,4 +1,5 @@
 #include <ritr/common/small_matrix.h>
+#include <ritr/mesh/gmsh_nodes.h>
 #include <ritr/mesh/mesh_builder.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -39,6 +40,7 @@ namespace ritr
           std::ifstream in(body.file);
           if (!in)
             throw std::runtime_error("cannot open mesh file '" + body.file + "'");
+          check_unique_node_tags(body.file);
           GridIn<dim> grid_in(tria);
           try
             {

@@ -1,3 +1,4 @@
+#include <ritr/mesh/gmsh_nodes.h>
 #include <ritr/mesh/obstacle_reader.h>
 
 #include <deal.II/grid/grid_in.h>
@@ -20,6 +21,7 @@ namespace ritr
         if (!in)
           throw std::runtime_error("cannot open obstacle file '" + file + "'");
         dealii::Triangulation<dim - 1, dim> surface;
+        check_unique_node_tags(file);
         dealii::GridIn<dim - 1, dim>        grid_in(surface);
         try
           {

@@ -1,4 +1,5 @@
 #include <ritr/scene/expression.h>
+#include <ritr/scene/input_error.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/lac/vector.h>
@@ -29,7 +30,7 @@ namespace ritr
     : n_components_(n_components)
   {
     if (count_components(text) != n_components)
-      throw std::runtime_error("expression '" + text + "' has " +
+      throw std::runtime_error("expression '" + shortened(text) + "' has " +
                                std::to_string(count_components(text)) + " components, expected " +
                                std::to_string(n_components));
     auto parser = std::make_unique<Parser>(n_components);
@@ -48,7 +49,7 @@ namespace ritr
       }
     catch (const std::exception &e)
       {
-        throw std::runtime_error("cannot parse expression '" + text + "' (variables: " + variables + ")");
+        throw std::runtime_error("cannot parse expression '" + shortened(text) + "' (variables: " + variables + ")");
       }
     function_ = std::move(parser);
   }

@@ -1,11 +1,14 @@
+#include <ritr/output/run_directory.h>
 #include <ritr/scene/expression.h>
 #include <ritr/scene/parameters.h>
+#include <ritr/scene/scene_file.h>
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
-#include <regex>
+#include <limits>
 #include <sstream>
 
 namespace ritr
@@ -24,7 +27,7 @@ namespace ritr
       prm.declare_entry("mode", "dynamic", Patterns::Selection("dynamic|static"),
                         "dynamic: implicit Euler elastodynamics; static: a sequence of equilibria (load-stepped in pseudo-time t).");
       prm.declare_entry("time step", "0.01", Patterns::Double(0), "Time step h (dynamic) or load step (static).");
-      prm.declare_entry("end time", "1", Patterns::Double(0), "Simulated time; the number of steps is round(end time / time step).");
+      prm.declare_entry("end time", "1", Patterns::Double(0), "Simulated time: a whole number of time steps (the last step lands on it).");
       prm.declare_entry("output directory", "output", Patterns::Anything(), "Where results are written (created if missing; relative to the working directory).");
       prm.declare_entry("output every", "1", Patterns::Integer(1), "Write VTU files every this many steps (log.csv gets every step).");
       prm.declare_entry("write nodal csv", "false", Patterns::Bool(), "Also write nodes-NNNNN.csv with id, u, x, v per node.");
@@ -35,14 +38,14 @@ namespace ritr
           prm.declare_entry("enabled", b == 0 ? "true" : "false", Patterns::Bool(), "Whether this body exists.");
           prm.declare_entry("shape", "rectangle", Patterns::Selection("interval|rectangle|box|disk|ball|file"), "interval (1D), rectangle (2D), box (3D), disk (2D), ball (3D) or file (gmsh .msh).");
           prm.declare_entry("file", "", Patterns::Anything(), "gmsh mesh for shape = file, relative to the .prm file. Physical tags give material and boundary ids.");
-          prm.declare_entry("lower", "0,0,0", doubles(), "Lower corner (interval/rectangle/box).");
-          prm.declare_entry("upper", "1,1,1", doubles(), "Upper corner (interval/rectangle/box).");
-          prm.declare_entry("subdivisions", "1,1,1", unsigneds(), "Cells per direction before splitting into simplices.");
-          prm.declare_entry("center", "0,0,0", doubles(), "Centre of a disk or ball.");
+          prm.declare_entry("lower", "0,0,0", doubles(), "Lower corner (interval/rectangle/box): dim numbers.");
+          prm.declare_entry("upper", "1,1,1", doubles(), "Upper corner (interval/rectangle/box): dim numbers.");
+          prm.declare_entry("subdivisions", "1,1,1", unsigneds(), "Cells per direction before splitting into simplices: dim numbers.");
+          prm.declare_entry("center", "0,0,0", doubles(), "Centre of a disk or ball: dim numbers.");
           prm.declare_entry("radius", "1", Patterns::Double(0), "Radius of a disk or ball.");
           prm.declare_entry("shape refinements", "2", Patterns::Integer(0, 8), "Refinements of a disk/ball that follow its round boundary.");
           prm.declare_entry("refinements", "0", Patterns::Integer(0, 8), "Uniform refinements by edge subdivision (each multiplies the cell count by 2^dim).");
-          prm.declare_entry("translation", "0,0,0", doubles(), "Shift applied to the body.");
+          prm.declare_entry("translation", "0,0,0", doubles(), "Shift applied to the body: dim numbers.");
           prm.declare_entry("material id", "0", Patterns::Integer(0, max_materials - 1), "Material of generated bodies (files use their physical tags).");
           prm.declare_entry("initial velocity", "0;0;0", Patterns::Anything(), "Initial velocity field: dim components separated by ';', in x,y,z.");
           prm.leave_subsection();
@@ -57,7 +60,7 @@ namespace ritr
           prm.leave_subsection();
         }
       prm.enter_subsection("Gravity");
-      prm.declare_entry("acceleration", "0,-9.81,0", doubles(), "Body force per unit mass (first dim components used).");
+      prm.declare_entry("acceleration", "0,-9.81,0", doubles(), "Body force per unit mass: dim numbers.");
       prm.declare_entry("load factor", "1", Patterns::Anything(), "Scalar expression in t scaling gravity (load stepping in statics, e.g. t/T).");
       prm.leave_subsection();
       for (unsigned int d = 0; d < max_dirichlet; ++d)
@@ -74,15 +77,15 @@ namespace ritr
           prm.enter_subsection("Obstacle " + std::to_string(o));
           prm.declare_entry("type", "none", Patterns::Selection("none|plane|box|spikes|punch|file"), "Rigid obstacle: none, plane (ground), box, spikes (a row of sharp spikes), punch (a bar), file (.obj or .msh surface).");
           prm.declare_entry("file", "", Patterns::Anything(), "Surface mesh for type = file, relative to the .prm file.");
-          prm.declare_entry("point", "0,0,0", doubles(), "plane: a point on it; box/punch: centre; spikes: centre of the row's base.");
-          prm.declare_entry("normal", "0,1,0", doubles(), "plane: outward normal (the side where bodies are).");
-          prm.declare_entry("size", "10,10,10", doubles(), "plane: extent; box/punch: edge lengths; spikes: row length (and depth in 3D).");
+          prm.declare_entry("point", "0,0,0", doubles(), "plane: a point on it; box/punch: centre; spikes: centre of the row's base (dim numbers).");
+          prm.declare_entry("normal", "0,1,0", doubles(), "plane: outward normal (the side where bodies are; dim numbers).");
+          prm.declare_entry("size", "10,10,10", doubles(), "plane: extent (one number); box/punch: edge lengths (dim numbers); spikes: row length (one number; a 3D row is as deep as it is long).");
           prm.declare_entry("count", "5", Patterns::Integer(1), "spikes: number of spikes (per row direction).");
           prm.declare_entry("spike height", "0.2", Patterns::Double(0), "spikes: height of each spike.");
           prm.declare_entry("translation", "0;0;0", Patterns::Anything(), "Scripted translation: dim components in t.");
           prm.declare_entry("rotation angle", "0", Patterns::Anything(), "Scripted rotation angle [rad] in t, about the rotation center (and axis in 3D).");
-          prm.declare_entry("rotation axis", "0,0,1", doubles(), "3D rotation axis.");
-          prm.declare_entry("rotation center", "0,0,0", doubles(), "Centre of rotation.");
+          prm.declare_entry("rotation axis", "0,0,1", doubles(), "3D rotation axis (3 numbers).");
+          prm.declare_entry("rotation center", "0,0,0", doubles(), "Centre of rotation (dim numbers).");
           prm.leave_subsection();
         }
       prm.enter_subsection("Contact");
@@ -90,7 +93,7 @@ namespace ritr
       prm.declare_entry("dhat", "1e-3", Patterns::Double(0), "Barrier activation distance.");
       prm.declare_entry("barrier stiffness", "adaptive", Patterns::Anything(), "'adaptive' (IPC's initialisation and doubling rule) or a fixed positive value.");
       prm.declare_entry("friction coefficient", "0", Patterns::Double(0), "Coulomb friction coefficient mu (0: frictionless).");
-      prm.declare_entry("epsilon v", "1e-3", Patterns::Double(0), "Friction smoothing velocity eps_v [m/s].");
+      prm.declare_entry("epsilon v", "1e-3", Patterns::Double(0), "Friction smoothing velocity eps_v [m/s]; positive when there is friction.");
       prm.declare_entry("friction iterations", "1", Patterns::Integer(1), "Lagged friction updates per step.");
       prm.declare_entry("self contact", "true", Patterns::Bool(), "Contact within one body and between bodies.");
       prm.leave_subsection();
@@ -114,21 +117,33 @@ namespace ritr
       prm.leave_subsection();
     }
 
+    // The pattern has checked each item; strtod, unlike stod, does not throw on underflow.
     std::vector<double> get_doubles(ParameterHandler &prm, const std::string &name)
     {
       std::vector<double> v;
       std::stringstream   ss(prm.get(name));
       std::string         item;
       while (std::getline(ss, item, ','))
-        v.push_back(std::stod(item));
+        v.push_back(std::strtod(item.c_str(), nullptr));
       return v;
     }
-    std::vector<unsigned int> get_unsigneds(ParameterHandler &prm, const std::string &name)
+
+    // A list set in the file must give exactly `n` numbers: a short one is not padded with
+    // zeros. Left at its default (three numbers), its first dim are used.
+    std::vector<double> get_numbers(ParameterHandler &prm, const Scene &scene, const std::string &section,
+                                    const std::string &name, const unsigned int n)
     {
-      std::vector<unsigned int> v;
-      for (const double d : get_doubles(prm, name))
-        v.push_back(static_cast<unsigned int>(d));
+      const std::vector<double> v     = get_doubles(prm, name);
+      const std::string         entry = section.empty() ? name : section + "/" + name;
+      if (scene.entry_lines.count(entry) > 0 && v.size() != n)
+        throw InputError(scene.where(entry) + ": needs " + std::to_string(n) + (n == 1 ? " number" : " numbers") +
+                         (n == static_cast<unsigned int>(scene.dimension) && n > 1 ? " (one per direction)" : "") +
+                         ", not " + std::to_string(v.size()));
       return v;
+    }
+    std::vector<unsigned int> to_unsigned(const std::vector<double> &numbers)
+    {
+      return std::vector<unsigned int>(numbers.begin(), numbers.end());
     }
 
     // Compiles an expression so that a typo is reported at start-up with its entry name.
@@ -167,26 +182,205 @@ namespace ritr
       return slash == std::string::npos ? path : prm_file.substr(0, slash + 1) + path;
     }
 
-    // deal.II's parser messages span several lines ("Line <3> of file <f>: The entry value
-    // ... does not match ..."); fold them into "f:3: The entry value ... does not match ...".
-    std::string one_line(const std::string &message)
+    // The scene of a parsed parameter file, with every check that needs more than a pattern.
+    Scene validated_scene(ParameterHandler &prm, const SceneFile &scene_file, const std::string &file)
     {
-      std::stringstream ss(message);
-      std::string       line, folded;
-      while (std::getline(ss, line))
+      Scene s;
+      s.parameter_file   = file;
+      s.entry_lines      = scene_file.lines;
+      s.dimension        = prm.get_integer("dimension");
+      s.mode             = prm.get("mode");
+      s.time_step        = prm.get_double("time step");
+      s.end_time         = prm.get_double("end time");
+      s.output_directory = prm.get("output directory");
+      s.output_every     = prm.get_integer("output every");
+      s.write_nodal_csv  = prm.get_bool("write nodal csv");
+      const int dim      = s.dimension;
+      const auto fail    = [&](const std::string &entry, const std::string &what) {
+        throw InputError(s.where(entry) + ": " + what);
+      };
+      if (!(s.time_step > 0))
+        fail("time step", "must be positive");
+      if (!(s.end_time > 0))
+        fail("end time", "must be positive");
+      if (s.time_step > s.end_time)
+        fail("time step", "exceeds the end time (" + prm.get("end time") + ")");
+      // The last step lands on the end time: a whole number of steps, countable in an int.
+      const double steps = s.end_time / s.time_step;
+      if (!(steps <= std::numeric_limits<int>::max()))
+        fail("time step", "gives more than " + std::to_string(std::numeric_limits<int>::max()) + " steps");
+      if (std::abs(steps - std::round(steps)) > 1e-6)
+        fail("end time", "is not a whole number of time steps of " + prm.get("time step") + " (" +
+                           std::to_string(steps) + " steps)");
+      if (s.output_directory.empty())
+        fail("output directory", "is empty");
+      if (const std::string problem = output_directory_problem(s.output_directory); !problem.empty())
+        fail("output directory", "'" + shortened(s.output_directory) + "' " + problem);
+
+      for (unsigned int b = 0; b < max_bodies; ++b)
         {
-          const auto first = line.find_first_not_of(" \t");
-          if (first != std::string::npos)
-            folded += (folded.empty() ? "" : " ") + line.substr(first, line.find_last_not_of(" \t") - first + 1);
+          const std::string name = "Body " + std::to_string(b);
+          prm.enter_subsection(name);
+          if (prm.get_bool("enabled"))
+            {
+              BodyScene body;
+              body.section        = name;
+              auto     &g         = body.geometry;
+              g.shape             = prm.get("shape");
+              g.file              = resolve(prm.get("file"), file);
+              g.lower             = get_numbers(prm, s, name, "lower", dim);
+              g.upper             = get_numbers(prm, s, name, "upper", dim);
+              g.subdivisions      = to_unsigned(get_numbers(prm, s, name, "subdivisions", dim));
+              g.center            = get_numbers(prm, s, name, "center", dim);
+              g.radius            = prm.get_double("radius");
+              g.shape_refinements = prm.get_integer("shape refinements");
+              g.refinements       = prm.get_integer("refinements");
+              g.translation       = get_numbers(prm, s, name, "translation", dim);
+              g.material_id       = prm.get_integer("material id");
+              body.initial_velocity = vector_expression(prm, "initial velocity", dim);
+              if (g.shape == "file" && g.file.empty())
+                fail(name + "/file", "shape = file needs a mesh file");
+              if (g.shape == "file" && !std::ifstream(g.file))
+                fail(name + "/file", "cannot open mesh file '" + shortened(g.file) + "'");
+              if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
+                for (int k = 0; k < dim; ++k)
+                  if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
+                      !(g.upper[k] > g.lower[k]))
+                    fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
+              check_expression(dim, body.initial_velocity, dim, s.where(name + "/initial velocity"));
+              s.bodies.push_back(body);
+            }
+          prm.leave_subsection();
         }
-      std::smatch match;
-      if (std::regex_match(folded, match, std::regex("Line <([0-9]+)> of file <([^>]*)>: (.*)")))
-        return match[2].str() + ":" + match[1].str() + ": " + match[3].str();
-      return folded.empty() ? "malformed parameter file" : folded;
+      if (s.bodies.empty())
+        fail("Body 0/enabled", "the scene has no body");
+
+      for (unsigned int m = 0; m < max_materials; ++m)
+        {
+          prm.enter_subsection("Material " + std::to_string(m));
+          Material mat;
+          mat.model          = parse_material_model(prm.get("model"));
+          mat.youngs_modulus = prm.get_double("youngs modulus");
+          mat.poisson_ratio  = prm.get_double("poisson ratio");
+          mat.density        = prm.get_double("density");
+          if (!(mat.youngs_modulus > 0) || !(mat.density > 0) || !(mat.poisson_ratio < 0.5))
+            fail("Material " + std::to_string(m), "needs E > 0, density > 0 and Poisson ratio < 0.5");
+          s.materials.push_back(mat);
+          prm.leave_subsection();
+        }
+
+      prm.enter_subsection("Gravity");
+      s.gravity     = get_numbers(prm, s, "Gravity", "acceleration", dim);
+      s.gravity.resize(3, 0.0);
+      s.load_factor = prm.get("load factor");
+      check_expression(dim, s.load_factor, 1, s.where("Gravity/load factor"));
+      prm.leave_subsection();
+
+      for (unsigned int d = 0; d < max_dirichlet; ++d)
+        {
+          const std::string name = "Dirichlet " + std::to_string(d);
+          prm.enter_subsection(name);
+          if (prm.get_bool("enabled"))
+            {
+              DirichletScene bc;
+              bc.section      = name;
+              bc.boundary_ids = to_unsigned(get_doubles(prm, "boundary ids"));
+              bc.region       = prm.get("region");
+              bc.displacement = vector_expression(prm, "displacement", dim);
+              if (bc.boundary_ids.empty() == bc.region.empty())
+                fail(name, "give exactly one of 'boundary ids' and 'region'");
+              if (!bc.region.empty())
+                check_expression(dim, bc.region, 1, s.where(name + "/region"));
+              check_expression(dim, bc.displacement, dim, s.where(name + "/displacement"));
+              s.dirichlet.push_back(bc);
+            }
+          prm.leave_subsection();
+        }
+
+      for (unsigned int o = 0; o < max_obstacles; ++o)
+        {
+          const std::string name = "Obstacle " + std::to_string(o);
+          prm.enter_subsection(name);
+          ObstacleScene ob;
+          ob.section = name;
+          ob.type    = prm.get("type");
+          if (ob.type != "none")
+            {
+              ob.file            = resolve(prm.get("file"), file);
+              const bool box     = ob.type == "box" || ob.type == "punch";
+              ob.point           = get_numbers(prm, s, name, "point", dim);
+              ob.normal          = get_numbers(prm, s, name, "normal", dim);
+              ob.size            = get_numbers(prm, s, name, "size", box ? dim : 1);
+              ob.count           = prm.get_integer("count");
+              ob.spike_height    = prm.get_double("spike height");
+              ob.translation     = vector_expression(prm, "translation", dim);
+              ob.rotation_angle  = prm.get("rotation angle");
+              ob.rotation_axis   = get_numbers(prm, s, name, "rotation axis", 3);
+              ob.rotation_center = get_numbers(prm, s, name, "rotation center", dim);
+              for (auto *v : {&ob.point, &ob.normal, &ob.size, &ob.rotation_axis, &ob.rotation_center})
+                v->resize(3, 0.0);
+              if (ob.type == "file" && !std::ifstream(ob.file))
+                fail(name + "/file", "cannot open obstacle file '" + shortened(ob.file) + "'");
+              if (dim == 1 && ob.type != "plane")
+                fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
+              check_expression(dim, ob.translation, dim, s.where(name + "/translation"));
+              check_expression(dim, ob.rotation_angle, 1, s.where(name + "/rotation angle"));
+              s.obstacles.push_back(ob);
+            }
+          prm.leave_subsection();
+        }
+
+      prm.enter_subsection("Contact");
+      s.contact.enabled              = prm.get_bool("enabled");
+      s.contact.dhat                 = prm.get_double("dhat");
+      const std::string stiffness    = prm.get("barrier stiffness");
+      if (stiffness != "adaptive")
+        {
+          char *end                   = nullptr;
+          s.contact.barrier_stiffness = std::strtod(stiffness.c_str(), &end);
+          if (end == stiffness.c_str() || *end != '\0' || !(s.contact.barrier_stiffness > 0) ||
+              !std::isfinite(s.contact.barrier_stiffness))
+            fail("Contact/barrier stiffness", "must be 'adaptive' or a positive number");
+        }
+      s.contact.friction_coefficient = prm.get_double("friction coefficient");
+      s.contact.epsilon_v            = prm.get_double("epsilon v");
+      s.contact.friction_iterations  = prm.get_integer("friction iterations");
+      s.contact.self_contact         = prm.get_bool("self contact");
+      if (!(s.contact.dhat > 0))
+        fail("Contact/dhat", "must be positive");
+      if (s.contact.enabled && s.contact.friction_coefficient > 0 && !(s.contact.epsilon_v > 0))
+        fail("Contact/epsilon v", "must be positive when the friction coefficient is");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Adaptivity");
+      s.adaptivity.enabled           = prm.get_bool("enabled");
+      s.adaptivity.hessian           = prm.get("hessian");
+      s.adaptivity.inertia           = prm.get("inertia");
+      s.adaptivity.projection        = prm.get("projection");
+      s.adaptivity.admissibility     = prm.get("admissibility");
+      s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
+      s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
+      s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
+      s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
+      s.adaptivity.max_iterations    = prm.get_integer("max iterations");
+      prm.leave_subsection();
+      prm.enter_subsection("Solver");
+      s.solver.newton_tolerance = prm.get_double("newton tolerance");
+      s.solver.static_tolerance = prm.get_double("static tolerance");
+      s.solver.max_iterations   = prm.get_integer("max iterations");
+      s.solver.threads          = prm.get_integer("threads");
+      prm.leave_subsection();
+      return s;
     }
   } // namespace
 
   unsigned int Scene::n_steps() const { return std::max(1L, std::lround(end_time / time_step)); }
+
+  std::string Scene::where(const std::string &entry) const
+  {
+    const auto line = entry_lines.find(entry);
+    return parameter_file + (line == entry_lines.end() ? "" : ":" + std::to_string(line->second)) + ": " + entry;
+  }
 
   void print_parameters(std::ostream &out)
   {
@@ -197,198 +391,32 @@ namespace ritr
 
   Scene read_scene(const std::string &file)
   {
-    {
-      std::ifstream in(file);
-      if (!in)
-        throw InputError(file + ": cannot open the parameter file");
-    }
+    const SceneFile  scene_file = read_scene_file(file);
     ParameterHandler prm;
     declare(prm);
     try
       {
-        prm.parse_input(file, "", false, true);
+        std::istringstream text(scene_file.text);
+        prm.parse_input(text, file, "", false);
+        if (!scene_file.sets_an_entry)
+          throw InputError(file + ": sets no entry (an empty scene would run every default)");
+        return validated_scene(prm, scene_file, file);
       }
+    catch (const InputError &)
+      {
+        throw;
+      }
+    // deal.II reports what its parser rejects, or a value it cannot convert, in its own
+    // exceptions: several lines that name the file or the entry.
     catch (const dealii::ExceptionBase &e)
       {
         std::stringstream ss;
         e.print_info(ss);
-        throw InputError(one_line(ss.str()));
+        throw InputError(fold_parser_message(ss.str(), file));
       }
     catch (const std::exception &e)
       {
-        throw InputError(file + ": " + one_line(e.what()));
+        throw InputError(fold_parser_message(e.what(), file));
       }
-
-    Scene s;
-    s.parameter_file   = file;
-    s.dimension        = prm.get_integer("dimension");
-    s.mode             = prm.get("mode");
-    s.time_step        = prm.get_double("time step");
-    s.end_time         = prm.get_double("end time");
-    s.output_directory = prm.get("output directory");
-    s.output_every     = prm.get_integer("output every");
-    s.write_nodal_csv  = prm.get_bool("write nodal csv");
-    const int dim      = s.dimension;
-    const auto fail    = [&](const std::string &entry, const std::string &what) {
-      throw InputError(file + ": " + entry + ": " + what);
-    };
-    if (!(s.time_step > 0))
-      fail("time step", "must be positive");
-    if (!(s.end_time > 0))
-      fail("end time", "must be positive");
-
-    for (unsigned int b = 0; b < max_bodies; ++b)
-      {
-        const std::string name = "Body " + std::to_string(b);
-        prm.enter_subsection(name);
-        if (prm.get_bool("enabled"))
-          {
-            BodyScene body;
-            auto     &g         = body.geometry;
-            g.shape             = prm.get("shape");
-            g.file              = resolve(prm.get("file"), file);
-            g.lower             = get_doubles(prm, "lower");
-            g.upper             = get_doubles(prm, "upper");
-            g.subdivisions      = get_unsigneds(prm, "subdivisions");
-            g.center            = get_doubles(prm, "center");
-            g.radius            = prm.get_double("radius");
-            g.shape_refinements = prm.get_integer("shape refinements");
-            g.refinements       = prm.get_integer("refinements");
-            g.translation       = get_doubles(prm, "translation");
-            g.material_id       = prm.get_integer("material id");
-            body.initial_velocity = vector_expression(prm, "initial velocity", dim);
-            if (g.shape == "file" && g.file.empty())
-              fail(name + "/file", "shape = file needs a mesh file");
-            if (g.shape == "file" && !std::ifstream(g.file))
-              fail(name + "/file", "cannot open mesh file '" + g.file + "'");
-            if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
-              for (int k = 0; k < dim; ++k)
-                if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
-                    !(g.upper[k] > g.lower[k]))
-                  fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
-            check_expression(dim, body.initial_velocity, dim, file + ": " + name + "/initial velocity");
-            s.bodies.push_back(body);
-          }
-        prm.leave_subsection();
-      }
-    if (s.bodies.empty())
-      fail("Body 0/enabled", "the scene has no body");
-
-    for (unsigned int m = 0; m < max_materials; ++m)
-      {
-        prm.enter_subsection("Material " + std::to_string(m));
-        Material mat;
-        mat.model          = parse_material_model(prm.get("model"));
-        mat.youngs_modulus = prm.get_double("youngs modulus");
-        mat.poisson_ratio  = prm.get_double("poisson ratio");
-        mat.density        = prm.get_double("density");
-        if (!(mat.youngs_modulus > 0) || !(mat.density > 0) || !(mat.poisson_ratio < 0.5))
-          fail("Material " + std::to_string(m), "needs E > 0, density > 0 and Poisson ratio < 0.5");
-        s.materials.push_back(mat);
-        prm.leave_subsection();
-      }
-
-    prm.enter_subsection("Gravity");
-    s.gravity     = get_doubles(prm, "acceleration");
-    s.gravity.resize(3, 0.0);
-    s.load_factor = prm.get("load factor");
-    check_expression(dim, s.load_factor, 1, file + ": Gravity/load factor");
-    prm.leave_subsection();
-
-    for (unsigned int d = 0; d < max_dirichlet; ++d)
-      {
-        const std::string name = "Dirichlet " + std::to_string(d);
-        prm.enter_subsection(name);
-        if (prm.get_bool("enabled"))
-          {
-            DirichletScene bc;
-            bc.boundary_ids = get_unsigneds(prm, "boundary ids");
-            bc.region       = prm.get("region");
-            bc.displacement = vector_expression(prm, "displacement", dim);
-            if (bc.boundary_ids.empty() == bc.region.empty())
-              fail(name, "give exactly one of 'boundary ids' and 'region'");
-            if (!bc.region.empty())
-              check_expression(dim, bc.region, 1, file + ": " + name + "/region");
-            check_expression(dim, bc.displacement, dim, file + ": " + name + "/displacement");
-            s.dirichlet.push_back(bc);
-          }
-        prm.leave_subsection();
-      }
-
-    for (unsigned int o = 0; o < max_obstacles; ++o)
-      {
-        const std::string name = "Obstacle " + std::to_string(o);
-        prm.enter_subsection(name);
-        ObstacleScene ob;
-        ob.type = prm.get("type");
-        if (ob.type != "none")
-          {
-            ob.file            = resolve(prm.get("file"), file);
-            ob.point           = get_doubles(prm, "point");
-            ob.normal          = get_doubles(prm, "normal");
-            ob.size            = get_doubles(prm, "size");
-            ob.count           = prm.get_integer("count");
-            ob.spike_height    = prm.get_double("spike height");
-            ob.translation     = vector_expression(prm, "translation", dim);
-            ob.rotation_angle  = prm.get("rotation angle");
-            ob.rotation_axis   = get_doubles(prm, "rotation axis");
-            ob.rotation_center = get_doubles(prm, "rotation center");
-            for (auto *v : {&ob.point, &ob.normal, &ob.size, &ob.rotation_axis, &ob.rotation_center})
-              v->resize(3, 0.0);
-            if (ob.type == "file" && !std::ifstream(ob.file))
-              fail(name + "/file", "cannot open obstacle file '" + ob.file + "'");
-            if (dim == 1 && ob.type != "plane")
-              fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
-            check_expression(dim, ob.translation, dim, file + ": " + name + "/translation");
-            check_expression(dim, ob.rotation_angle, 1, file + ": " + name + "/rotation angle");
-            s.obstacles.push_back(ob);
-          }
-        prm.leave_subsection();
-      }
-
-    prm.enter_subsection("Contact");
-    s.contact.enabled              = prm.get_bool("enabled");
-    s.contact.dhat                 = prm.get_double("dhat");
-    const std::string stiffness    = prm.get("barrier stiffness");
-    if (stiffness != "adaptive")
-      {
-        try
-          {
-            s.contact.barrier_stiffness = std::stod(stiffness);
-          }
-        catch (const std::exception &)
-          {
-            s.contact.barrier_stiffness = -1;
-          }
-        if (!(s.contact.barrier_stiffness > 0))
-          fail("Contact/barrier stiffness", "must be 'adaptive' or a positive number");
-      }
-    s.contact.friction_coefficient = prm.get_double("friction coefficient");
-    s.contact.epsilon_v            = prm.get_double("epsilon v");
-    s.contact.friction_iterations  = prm.get_integer("friction iterations");
-    s.contact.self_contact         = prm.get_bool("self contact");
-    if (!(s.contact.dhat > 0))
-      fail("Contact/dhat", "must be positive");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Adaptivity");
-    s.adaptivity.enabled           = prm.get_bool("enabled");
-    s.adaptivity.hessian           = prm.get("hessian");
-    s.adaptivity.inertia           = prm.get("inertia");
-    s.adaptivity.projection        = prm.get("projection");
-    s.adaptivity.admissibility     = prm.get("admissibility");
-    s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
-    s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
-    s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
-    s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
-    s.adaptivity.max_iterations    = prm.get_integer("max iterations");
-    prm.leave_subsection();
-    prm.enter_subsection("Solver");
-    s.solver.newton_tolerance = prm.get_double("newton tolerance");
-    s.solver.static_tolerance = prm.get_double("static tolerance");
-    s.solver.max_iterations   = prm.get_integer("max iterations");
-    s.solver.threads          = prm.get_integer("threads");
-    prm.leave_subsection();
-    return s;
   }
 } // namespace ritr

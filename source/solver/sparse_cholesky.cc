@@ -17,6 +17,8 @@ namespace ritr
   {
     if (!matrix.isCompressed())
       throw std::logic_error("SparseCholesky needs a compressed matrix");
+    if (matrix.rows() == 0)
+      return 0.0;  // every entry prescribed: nothing to factorize (CHOLMOD fails on it)
     if (!same_pattern(matrix))
       {
         llt_.analyzePattern(matrix);
@@ -46,5 +48,8 @@ namespace ritr
     throw std::runtime_error("the Newton system could not be factorized");
   }
 
-  Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd &rhs) const { return llt_.solve(rhs); }
+  Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd &rhs) const
+  {
+    return rhs.size() == 0 ? rhs : Eigen::VectorXd(llt_.solve(rhs));
+  }
 } // namespace ritr

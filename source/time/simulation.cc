@@ -1,17 +1,12 @@
-#include <ritr/common/atomic_file.h>
 #include <ritr/common/wall_clock.h>
 #include <ritr/mesh/obstacle_reader.h>
 #include <ritr/mesh/simplex_rules.h>
 #include <ritr/metrics/mesh_metrics.h>
-#include <ritr/output/vtk_files.h>
 #include <ritr/scene/parameters.h>
 #include <ritr/time/simulation.h>
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
-#include <iomanip>
-#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -28,33 +23,30 @@ namespace ritr
       return r;
     }
 
-    std::string numbered(const std::string &stem, const unsigned int n, const std::string &ext)
+    // The .prm subsection of the i-th enabled body, condition or obstacle.
+    std::string section(const std::string &name, const std::string &kind, const std::size_t i)
     {
-      std::ostringstream s;
-      s << stem << '-' << std::setw(5) << std::setfill('0') << n << ext;
-      return s.str();
+      return name.empty() ? kind + " " + std::to_string(i) : name;
     }
 
+    // Expressions are evaluated where they are first used (initial nodes, t = 0 and the first
+    // step's time) before anything runs, so that NaN or inf is bad input, not a failed step.
+    template <int dim>
+    Eigen::VectorXd finite_value(const Expression<dim> &expression, const Vec<dim> &x, const double t,
+                                 const std::string &where)
+    {
+      const Eigen::VectorXd v = expression.vector_value(x, t);
+      if (!v.allFinite())
+        {
+          std::ostringstream s;
+          s << where << ": is not finite at x = ("
+            << x.transpose().format(Eigen::IOFormat(Eigen::StreamPrecision, Eigen::DontAlignCols, ", ", ", "))
+            << "), t = " << t;
+          throw InputError(s.str());
+        }
+      return v;
+    }
   } // namespace
-
-  template <int dim>
-  struct Simulation<dim>::Outputs
-  {
-    std::filesystem::path directory;
-    PvdCollection         solution, reference, obstacles;
-    std::ostringstream    log;
-
-    explicit Outputs(const std::filesystem::path &dir)
-      : directory(dir)
-      , solution((dir / "solution.pvd").string())
-      , reference((dir / "reference.pvd").string())
-      , obstacles((dir / "obstacles.pvd").string())
-    {
-      log << "step,time,n_vertices,energy,inner_newton_iterations,outer_iterations,line_search_trials,"
-             "initial_objective,sliding_violation,min_distance,min_reference_measure,min_deformed_jacobian,"
-             "inner_solve_seconds,transfer_seconds,outer_solve_seconds,wall_seconds\n";
-    }
-  };
 
   template <int dim>
   Simulation<dim>::~Simulation() = default;
@@ -63,7 +55,6 @@ namespace ritr
   Simulation<dim>::Simulation(const Scene &scene)
     : scene_(scene)
   {
-    const std::string &file = scene.parameter_file;
     std::vector<BodyDescription> bodies;
     for (const auto &b : scene.bodies)
       bodies.push_back(b.geometry);
@@ -78,17 +69,37 @@ namespace ritr
       }
     catch (const std::exception &e)
       {
-        throw InputError(file + ": Body: " + e.what());
+        // Name the body: only now, rebuild the bodies one at a time to find the one at fault.
+        std::string name = "Body";
+        for (std::size_t b = 0; b < bodies.size() && name == "Body"; ++b)
+          try
+            {
+              build_mesh<dim>({bodies[b]});
+            }
+          catch (const std::exception &)
+            {
+              name = section(scene.bodies[b].section, "Body", b);
+            }
+        throw InputError(scene.where(name) + ": " + e.what());
       }
     u_ = mesh_.reference;
     x_ = u_;
     v_ = Eigen::VectorXd::Zero(u_.size());
     std::vector<Expression<dim>> velocity;
-    for (const auto &b : scene.bodies)
-      velocity.emplace_back(b.initial_velocity, dim);
+    std::vector<std::string>     velocity_entry;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      {
+        velocity.emplace_back(scene.bodies[b].initial_velocity, dim);
+        velocity_entry.push_back(scene.where(section(scene.bodies[b].section, "Body", b) + "/initial velocity"));
+      }
     for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
-      v_.template segment<dim>(i * dim) = velocity[mesh_.node_part[i]].vector_value(mesh_.reference_node(i), 0.0);
+      {
+        const unsigned int b              = mesh_.node_part[i];
+        v_.template segment<dim>(i * dim) = finite_value(velocity[b], mesh_.reference_node(i), 0.0, velocity_entry[b]);
+      }
     load_factor_.emplace(scene.load_factor, 1);
+    for (const double t : {0.0, scene.time_step})
+      finite_value<dim>(*load_factor_, Vec<dim>::Zero(), t, scene.where("Gravity/load factor"));
 
     setup_obstacles();
     setup_dirichlet();
@@ -144,7 +155,6 @@ namespace ritr
     // integrand (kinks inside candidate cells) far better than low-order rules. A rod's cells
     // are cheap, so there the rule is repeated on sub-cells by default.
     const unsigned int subdivisions = a.quadrature_subdivisions > 0 ? a.quadrature_subdivisions : (dim == 1 ? 64 : 1);
-    const std::string &file = scene_.parameter_file;
     try
       {
         ritr_ = std::make_unique<RitrSolver<dim>>(mesh_, *bulk_, contact_.get(), *implicit_step_, settings,
@@ -152,19 +162,20 @@ namespace ritr
       }
     catch (const std::invalid_argument &e)
       {
-        throw InputError(file + ": Adaptivity/enabled: " + e.what());
+        throw InputError(scene_.where("Adaptivity/enabled") + ": " + e.what());
       }
     if (!settings.physical_admissibility && contact_)
-      throw InputError(file + ": Adaptivity/admissibility: without physical admissibility contact is not supported");
+      throw InputError(scene_.where("Adaptivity/admissibility") +
+                       ": without physical admissibility contact is not supported");
   }
 
   template <int dim>
   void Simulation<dim>::setup_obstacles()
   {
-    const std::string &file = scene_.parameter_file;
     for (std::size_t o = 0; o < scene_.obstacles.size(); ++o)
       {
-        const ObstacleScene &s = scene_.obstacles[o];
+        const ObstacleScene &s    = scene_.obstacles[o];
+        const std::string    name = section(s.section, "Obstacle", o);
         contact::RigidObstacle<dim> obstacle;
         try
           {
@@ -181,12 +192,17 @@ namespace ritr
           }
         catch (const std::exception &e)
           {
-            throw InputError(file + ": Obstacle " + std::to_string(o) + ": " + e.what());
+            throw InputError(scene_.where(name) + ": " + e.what());
           }
         obstacle.center = to_vec<dim>(s.rotation_center);
         obstacle.axis   = Eigen::Vector3d(s.rotation_axis[0], s.rotation_axis[1], s.rotation_axis[2]);
         auto translation = std::make_shared<Expression<dim>>(s.translation, dim);
         auto angle       = std::make_shared<Expression<dim>>(s.rotation_angle, 1);
+        for (const double t : {0.0, scene_.time_step})
+          {
+            finite_value<dim>(*translation, Vec<dim>::Zero(), t, scene_.where(name + "/translation"));
+            finite_value<dim>(*angle, Vec<dim>::Zero(), t, scene_.where(name + "/rotation angle"));
+          }
         obstacle.translation = [translation](double t) {
           return Vec<dim>(translation->vector_value(Vec<dim>::Zero(), t));
         };
@@ -205,17 +221,19 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::setup_dirichlet()
   {
-    const std::string &file = scene_.parameter_file;
-    std::vector<int>   condition_of(mesh_.n_nodes(), -1);
+    std::vector<int> condition_of(mesh_.n_nodes(), -1);
+    const auto       name = [&](const unsigned int d) { return section(scene_.dirichlet[d].section, "Dirichlet", d); };
     for (unsigned int d = 0; d < scene_.dirichlet.size(); ++d)
       {
-        const DirichletScene &bc = scene_.dirichlet[d];
+        const DirichletScene &bc           = scene_.dirichlet[d];
+        const std::string     region_entry = scene_.where(name(d) + "/region");
+        const std::string     displacement_entry = scene_.where(name(d) + "/displacement");
         std::vector<bool>     selected(mesh_.n_nodes(), false);
         if (!bc.region.empty())
           {
             const Expression<dim> region(bc.region, 1);
             for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
-              selected[i] = region.value(mesh_.reference_node(i), 0.0) > 0;
+              selected[i] = finite_value(region, mesh_.reference_node(i), 0.0, region_entry)[0] > 0;
           }
         else
           for (unsigned int f = 0; f < mesh_.boundary_facets.size(); ++f)
@@ -229,6 +247,8 @@ namespace ritr
           if (selected[i])
             {
               ++count;
+              for (const double t : {0.0, scene_.time_step})
+                finite_value(dirichlet_displacements_[d], mesh_.reference_node(i), t, displacement_entry);
               if (condition_of[i] >= 0)
                 {
                   // Two conditions on one node must agree at all times we can check cheaply.
@@ -236,8 +256,7 @@ namespace ritr
                     if ((dirichlet_displacements_[condition_of[i]].vector_value(mesh_.reference_node(i), t) -
                          dirichlet_displacements_[d].vector_value(mesh_.reference_node(i), t))
                           .norm() > 1e-12)
-                      throw InputError(file + ": Dirichlet " + std::to_string(d) +
-                                       ": contradicts Dirichlet " + std::to_string(condition_of[i]) +
+                      throw InputError(scene_.where(name(d)) + ": contradicts " + name(condition_of[i]) +
                                        " on shared nodes");
                   continue;
                 }
@@ -245,7 +264,7 @@ namespace ritr
               dirichlet_nodes_.emplace_back(i, d);
             }
         if (count == 0)
-          throw InputError(file + ": Dirichlet " + std::to_string(d) + ": selects no node");
+          throw InputError(scene_.where(name(d)) + ": selects no node");
       }
     kinematic_.assign(u_.size() + obstacle_positions_.size(), false);
     for (const auto &[node, condition] : dirichlet_nodes_)
@@ -316,7 +335,8 @@ namespace ritr
   {
     const auto   start   = std::chrono::steady_clock::now();
     const double h       = scene_.time_step;
-    const double t1      = time_ + h;
+    // The last step lands on the end time, not on an accumulation of rounded steps.
+    const double t1      = step_ + 1 == scene_.n_steps() ? scene_.end_time : time_ + h;
     const bool   dynamic = scene_.dynamic();
 
     CellEnergyWeights<dim> w;
@@ -383,7 +403,7 @@ namespace ritr
     x_                  = r.z.head(u_.size());
     obstacle_positions_ = r.z.tail(obstacle_positions_.size());
     v_                  = r.v;
-    time_ += scene_.time_step;
+    time_ = report.time;
     ++step_;
     report.energy              = r.objective;
     report.initial_objective   = r.initial_objective;
@@ -433,164 +453,6 @@ namespace ritr
     contact_->add_gradient(state(), g);
     const double weight = scene_.dynamic() ? scene_.time_step * scene_.time_step : 1.0;
     return -g.head(x_.size()) / weight;
-  }
-
-  template <int dim>
-  void Simulation<dim>::write_step_output(const unsigned int step)
-  {
-    Outputs   &out = *outputs_;
-    const auto dir = out.directory;
-
-    VtuPiece piece;
-    for (const auto &cell : mesh_.cells)
-      piece.cells.emplace_back(cell.begin(), cell.end());
-    const auto field = [&](const std::string &name, const Eigen::VectorXd &v) {
-      return VtuField{name, 3, pad_to_3d(v, dim)};
-    };
-    piece.point_data = {field("displacement", x_ - u_), field("velocity", v_),
-                        field("reference_position", u_), field("contact_force", contact_forces())};
-    const auto strains = cell_strains(mesh_, x_, u_);
-    const auto quality = cell_qualities(mesh_, u_);
-    VtuField   strain{"strain", 1, Eigen::Map<const Eigen::VectorXd>(strains.data(), strains.size())};
-    VtuField   material{"material_id", 1, Eigen::VectorXd(mesh_.n_cells())};
-    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
-      material.values[c] = mesh_.cell_material[c];
-    VtuField element_quality{"element_quality", 1, Eigen::Map<const Eigen::VectorXd>(quality.data(), quality.size())};
-    piece.cell_data = {strain, material, element_quality};
-
-    const auto as_points = [&](const Eigen::VectorXd &p) {
-      const Eigen::VectorXd padded = pad_to_3d(p, dim);
-      return Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-        padded.data(), padded.size() / 3, 3));
-    };
-    piece.points = as_points(x_);
-    write_vtu((dir / numbered("solution", step, ".vtu")).string(), piece);
-    out.solution.add(time_, numbered("solution", step, ".vtu"));
-    piece.points = as_points(u_);
-    write_vtu((dir / numbered("reference", step, ".vtu")).string(), piece);
-    out.reference.add(time_, numbered("reference", step, ".vtu"));
-
-    if (!obstacles_.empty())
-      {
-        VtuPiece     obstacle_piece;
-        obstacle_piece.points = as_points(obstacle_positions_);
-        unsigned int offset   = 0;
-        for (const auto &o : obstacles_)
-          {
-            if constexpr (dim == 1)
-              obstacle_piece.cells.push_back({offset});
-            for (const auto &e : o.edges)
-              obstacle_piece.cells.push_back({offset + e[0], offset + e[1]});
-            for (const auto &f : o.faces)
-              obstacle_piece.cells.push_back({offset + f[0], offset + f[1], offset + f[2]});
-            offset += o.rest_vertices.size();
-          }
-        write_vtu((dir / numbered("obstacles", step, ".vtu")).string(), obstacle_piece);
-        out.obstacles.add(time_, numbered("obstacles", step, ".vtu"));
-      }
-
-    if (scene_.write_nodal_csv)
-      write_file_atomically((dir / numbered("nodes", step, ".csv")).string(), [&](std::ostream &s) {
-        const char *axes = "xyz";
-        s << "id";
-        for (const char *q : {"u", "x", "v"})
-          for (int k = 0; k < dim; ++k)
-            s << ',' << q << '_' << axes[k];
-        s << '\n';
-        for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
-          {
-            s << i;
-            for (const Eigen::VectorXd *q : {&u_, &x_, &v_})
-              for (int k = 0; k < dim; ++k)
-                s << ',' << (*q)[i * dim + k];
-            s << '\n';
-          }
-      });
-  }
-
-  template <int dim>
-  void Simulation<dim>::write_summary(const double total_seconds) const
-  {
-    unsigned int newton = 0, outer = 0, trials = 0;
-    double       inner_seconds = 0, transfer_seconds = 0, outer_seconds = 0, max_sliding = 0;
-    for (const auto &r : history_)
-      {
-        newton += r.newton_iterations;
-        outer += r.outer_iterations;
-        trials += r.line_search_trials;
-        inner_seconds += r.inner_seconds;
-        transfer_seconds += r.transfer_seconds;
-        outer_seconds += r.outer_solve_seconds;
-        max_sliding = std::max(max_sliding, r.sliding_violation);
-      }
-    write_file_atomically((outputs_->directory / "summary.json").string(), [&](std::ostream &s) {
-      s << "{\n  \"scene\": \"" << scene_.parameter_file << "\",\n"
-        << "  \"dimension\": " << dim << ",\n"
-        << "  \"mode\": \"" << scene_.mode << "\",\n"
-        << "  \"adaptivity\": " << (ritr_ ? "true" : "false") << ",\n"
-        << "  \"steps\": " << history_.size() << ",\n"
-        << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
-        << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
-        << "  \"total_wall_seconds\": " << total_seconds << ",\n"
-        << "  \"wall_seconds_per_step\": " << total_seconds / std::max<std::size_t>(1, history_.size()) << ",\n"
-        << "  \"linear_solve_seconds\": " << newton_solver().seconds_in_linear_solves() << ",\n"
-        << "  \"symbolic_factorizations\": " << newton_solver().linear_solver().n_symbolic_analyses() << ",\n"
-        << "  \"numeric_factorizations\": " << newton_solver().linear_solver().n_factorizations() << ",\n"
-        << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
-        << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
-        << "  \"total_newton_iterations\": " << newton << ",\n"
-        << "  \"total_outer_iterations\": " << outer << ",\n"
-        << "  \"total_line_search_trials\": " << trials << ",\n"
-        << "  \"inner_solve_seconds\": " << inner_seconds << ",\n"
-        << "  \"transfer_seconds\": " << transfer_seconds << ",\n"
-        << "  \"outer_solve_seconds\": " << outer_seconds << ",\n"
-        << "  \"max_sliding_violation\": " << max_sliding << ",\n"
-        << "  \"invariant_violations\": [";
-      for (std::size_t i = 0; i < invariant_violations_.size(); ++i)
-        s << (i ? ", " : "") << '"' << invariant_violations_[i] << '"';
-      s << "]\n}\n";
-    });
-  }
-
-  template <int dim>
-  void Simulation<dim>::run()
-  {
-    std::filesystem::create_directories(scene_.output_directory);
-    outputs_ = std::make_unique<Outputs>(scene_.output_directory);
-    write_step_output(0);
-    const unsigned int n_steps = scene_.n_steps();
-    const auto         start   = std::chrono::steady_clock::now();
-    const auto         flush_log = [&] {
-      write_file_atomically((outputs_->directory / "log.csv").string(),
-                            [&](std::ostream &s) { s << outputs_->log.str(); });
-    };
-    try
-      {
-        while (step_ < n_steps)
-          {
-            const StepReport r = advance();
-            outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
-                          << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
-                          << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
-                          << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.inner_seconds
-                          << ',' << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds
-                          << '\n';
-            flush_log();
-            if (step_ % scene_.output_every == 0 || step_ == n_steps)
-              write_step_output(step_);
-            const double elapsed = seconds_since(start);
-            std::cout << "step " << r.step << '/' << n_steps << "  t=" << std::setprecision(4) << r.time
-                      << "  newton=" << r.newton_iterations << "  E=" << std::setprecision(6) << r.energy
-                      << "  elapsed=" << std::setprecision(3) << elapsed << "s  eta="
-                      << elapsed / r.step * (n_steps - r.step) << "s" << std::endl;
-          }
-      }
-    catch (const ConvergenceError &)
-      {
-        write_summary(seconds_since(start));
-        throw;
-      }
-    write_summary(seconds_since(start));
   }
 
   template class Simulation<1>;

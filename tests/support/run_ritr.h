@@ -1,10 +1,12 @@
 #pragma once
 // Runs the ritr executable (path from the RITR_BINARY environment variable that ctest sets)
-// and captures its exit code and standard error.
+// and captures its exit code and standard error; reads and writes whole files and folders.
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -17,11 +19,39 @@ namespace ritr::test_support
     std::string output;  // stdout and stderr together
   };
 
+  // A small valid 2D scene: a strip above a ground plane, two steps. "OUTPUT" stands for its
+  // output directory.
+  inline const std::string small_scene = R"(set dimension = 2
+set time step = 0.01
+set end time = 0.02
+set output directory = OUTPUT
+subsection Body 0
+  set shape = rectangle
+  set upper = 1, 0.2
+  set subdivisions = 4, 1
+  set translation = 0, 0.01
+end
+subsection Obstacle 0
+  set type = plane
+  set point = 0, 0
+end
+subsection Contact
+  set dhat = 1e-3
+end
+)";
+
+  // `text` with its first `from` replaced by `to`.
+  inline std::string replaced(std::string text, const std::string &from, const std::string &to)
+  {
+    return text.replace(text.find(from), from.size(), to);
+  }
+
   inline std::string source_dir() { return std::getenv("RITR_SOURCE_DIR"); }
 
-  inline RunResult run_ritr(const std::string &arguments)
+  // `redirections` says where the streams go ("2>&1": both are captured).
+  inline RunResult run_ritr(const std::string &arguments, const std::string &redirections = "2>&1")
   {
-    const std::string command = std::string(std::getenv("RITR_BINARY")) + " " + arguments + " 2>&1";
+    const std::string command = std::string(std::getenv("RITR_BINARY")) + " " + arguments + " " + redirections;
     RunResult         r;
     FILE             *pipe = popen(command.c_str(), "r");
     std::array<char, 4096> buffer;
@@ -34,7 +64,7 @@ namespace ritr::test_support
 
   inline std::string read_file(const std::string &path)
   {
-    std::ifstream     in(path);
+    std::ifstream     in(path, std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
@@ -42,6 +72,15 @@ namespace ritr::test_support
 
   inline void write_file(const std::string &path, const std::string &text)
   {
-    std::ofstream(path) << text;
+    std::ofstream(path, std::ios::binary) << text;
+  }
+
+  // Every file and folder under `folder`, with the files' contents, to compare byte for byte.
+  inline std::map<std::string, std::string> snapshot(const std::string &folder)
+  {
+    std::map<std::string, std::string> files;
+    for (const auto &entry : std::filesystem::recursive_directory_iterator(folder))
+      files[entry.path().string()] = entry.is_directory() ? "(folder)" : read_file(entry.path().string());
+    return files;
   }
 } // namespace ritr::test_support

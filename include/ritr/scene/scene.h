@@ -5,15 +5,19 @@
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
 namespace ritr
 {
+  // The scene lists only the enabled bodies, conditions and obstacles; `section` keeps the
+  // name of each one's .prm subsection ("Body 2") for messages.
   struct BodyScene
   {
     BodyDescription geometry;
     std::string     initial_velocity;  // vector expression in x,y,z ("0; -1")
+    std::string     section;
   };
 
   struct DirichletScene
@@ -21,6 +25,7 @@ namespace ritr
     std::vector<unsigned int> boundary_ids;  // nodes on these boundary facets
     std::string               region;        // or nodes where this expression in x,y,z > 0
     std::string               displacement;  // vector expression in x,y,z,t
+    std::string               section;
   };
 
   struct ObstacleScene
@@ -36,6 +41,7 @@ namespace ritr
     std::string         rotation_angle;    // scalar expression in t (radians)
     std::vector<double> rotation_axis{0, 0, 1};
     std::vector<double> rotation_center{0, 0, 0};
+    std::string         section;
   };
 
   struct ContactScene
@@ -93,7 +99,13 @@ namespace ritr
     SolverScene                 solver;
     AdaptivityScene             adaptivity;
 
+    // The line of each entry set in the parameter file ("Body 0/radius" -> 12).
+    std::map<std::string, unsigned int> entry_lines;
+
     bool dynamic() const { return mode == "dynamic"; }
     unsigned int n_steps() const;
+    // The start of a message about `entry`: "FILE:LINE: ENTRY", or "FILE: ENTRY" when the
+    // entry is not set in the file.
+    std::string where(const std::string &entry) const;
   };
 } // namespace ritr

@@ -5,6 +5,7 @@
 #include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/contact/contact_potential.h>
 #include <ritr/elasticity/bulk_energy.h>
+#include <ritr/output/run_directory.h>
 #include <ritr/scene/expression.h>
 #include <ritr/scene/scene.h>
 #include <ritr/solver/newton.h>
@@ -75,7 +76,8 @@ namespace ritr
     void            check_invariants(StepReport &report);
     Eigen::VectorXd state() const;
     void write_step_output(unsigned int step);
-    void write_summary(double total_seconds) const;
+    // summary.json; `complete` only when every step is done, `failure` says why not.
+    void write_summary(double total_seconds, bool complete, const std::string &failure = "") const;
 
     Scene                                      scene_;
     SimplexMesh<dim>                           mesh_;
@@ -94,7 +96,6 @@ namespace ritr
     unsigned int                               step_ = 0;
     std::vector<StepReport>                    history_;
     std::vector<std::string>                   invariant_violations_;
-    struct Outputs;
-    std::unique_ptr<Outputs>                   outputs_;
+    std::unique_ptr<RunOutputs>                outputs_;
   };
 } // namespace ritr

@@ -1,0 +1,39 @@
+#pragma once
+// The output directory of a run. It is checked before anything is written (bad input must
+// leave it untouched), then owned by the run from its start: the previous run's outputs are
+// removed, so that a killed run never mixes with an older one or looks complete.
+#include <ritr/output/vtk_files.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+namespace ritr
+{
+  // Whether `name` is a file that a run writes, or its temporary (NAME.tmp): summary.json,
+  // log.csv, the .pvd collections, solution-/reference-/obstacles-NNNNN.vtu, nodes-NNNNN.csv.
+  bool is_run_output(const std::string &name);
+
+  // Why `directory` cannot hold a run's outputs ("" when it can); touches nothing.
+  std::string output_directory_problem(const std::filesystem::path &directory);
+
+  // The files a run keeps extending: the .pvd collections, and log.csv's rows.
+  struct RunOutputs
+  {
+    explicit RunOutputs(const std::filesystem::path &directory)
+      : directory(directory)
+      , solution((directory / "solution.pvd").string())
+      , reference((directory / "reference.pvd").string())
+      , obstacles((directory / "obstacles.pvd").string())
+    {}
+
+    std::filesystem::path directory;
+    PvdCollection         solution, reference, obstacles;
+    std::ostringstream    log;
+  };
+
+  // Removes the previous run's outputs and stale temporaries except summary.json, which the
+  // new run has already replaced. The .pvd collections go first, so that none names a
+  // removed file.
+  void remove_previous_outputs(const std::filesystem::path &directory);
+} // namespace ritr

@@ -1,0 +1,20 @@
+#pragma once
+// Bad input and the words that report it: one printable line however hostile the input.
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace ritr
+{
+  // Bad input: the message names the file, the entry and what is wrong. Control bytes and
+  // invalid UTF-8 are escaped (\xNN) so that the message stays one printable line.
+  class InputError : public std::runtime_error
+  {
+  public:
+    explicit InputError(const std::string &message);
+  };
+
+  // Input echoed in a message (a value, a path): escaped as above and, when longer than
+  // `max_length`, cut to its start with the full length noted.
+  std::string shortened(const std::string &text, std::size_t max_length = 80);
+} // namespace ritr

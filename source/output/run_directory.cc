@@ -1,0 +1,95 @@
+#include <ritr/output/run_directory.h>
+#include <ritr/scene/input_error.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace ritr
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    bool ends_with(const std::string &s, const std::string &end)
+    {
+      return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+    }
+
+    // STEM-NNNNN.EXT with one or more digits.
+    bool is_numbered(const std::string &name, const std::string &stem, const std::string &extension)
+    {
+      const std::size_t first = stem.size() + 1;
+      if (name.size() <= first + extension.size() || name.compare(0, first, stem + "-") != 0 ||
+          !ends_with(name, extension))
+        return false;
+      const auto digits = name.substr(first, name.size() - first - extension.size());
+      return std::all_of(digits.begin(), digits.end(), [](const char c) { return c >= '0' && c <= '9'; });
+    }
+
+    std::string quoted(const fs::path &p) { return "'" + shortened(p.string()) + "'"; }
+
+    bool writable(const fs::path &directory) { return access(directory.c_str(), W_OK | X_OK) == 0; }
+  } // namespace
+
+  bool is_run_output(const std::string &file_name)
+  {
+    const std::string name = ends_with(file_name, ".tmp") ? file_name.substr(0, file_name.size() - 4) : file_name;
+    for (const char *fixed : {"summary.json", "log.csv", "solution.pvd", "reference.pvd", "obstacles.pvd"})
+      if (name == fixed)
+        return true;
+    return is_numbered(name, "solution", ".vtu") || is_numbered(name, "reference", ".vtu") ||
+           is_numbered(name, "obstacles", ".vtu") || is_numbered(name, "nodes", ".csv");
+  }
+
+  std::string output_directory_problem(const fs::path &directory)
+  {
+    if (directory.empty())
+      return "is empty";
+    std::error_code      ec;
+    const fs::file_status status = fs::status(directory, ec);
+    if (status.type() == fs::file_type::not_found)
+      {
+        // It will be created: its nearest existing ancestor must be a writable directory.
+        fs::path ancestor = directory;
+        while (fs::status(ancestor, ec).type() == fs::file_type::not_found && ancestor.has_parent_path() &&
+               ancestor.parent_path() != ancestor)
+          ancestor = ancestor.parent_path();
+        if (fs::status(ancestor, ec).type() == fs::file_type::not_found)
+          ancestor = ".";
+        if (!fs::is_directory(ancestor, ec))
+          return "cannot be created: " + quoted(ancestor) + " is not a directory";
+        if (!writable(ancestor))
+          return "cannot be created: " + quoted(ancestor) + " is not writable";
+        return "";
+      }
+    if (ec)
+      return "cannot be used: " + ec.message();
+    if (!fs::is_directory(status))
+      return "exists and is not a directory";
+    if (!writable(directory))
+      return "is not writable";
+    // A run replaces its outputs by renaming temporaries: no directory may stand in the way.
+    for (const auto &entry : fs::directory_iterator(directory, ec))
+      if (is_run_output(entry.path().filename().string()) && !entry.is_regular_file(ec))
+        return "holds " + quoted(entry.path().filename()) + ", which is not a file but has an output's name";
+    if (ec)
+      return "cannot be listed: " + ec.message();
+    return "";
+  }
+
+  void remove_previous_outputs(const fs::path &directory)
+  {
+    std::vector<fs::path> collections, others;
+    for (const auto &entry : fs::directory_iterator(directory))
+      {
+        const std::string name = entry.path().filename().string();
+        if (is_run_output(name) && name != "summary.json")
+          (ends_with(name, ".pvd") ? collections : others).push_back(entry.path());
+      }
+    for (const auto *files : {&collections, &others})
+      for (const auto &file : *files)
+        fs::remove(file);
+  }
+} // namespace ritr

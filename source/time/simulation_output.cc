@@ -1,0 +1,218 @@
+// The outputs of a run (the output contract of the design notes): VTU/PVD files, log.csv,
+// summary.json, and the run's ownership of its output directory.
+#include <ritr/common/atomic_file.h>
+#include <ritr/common/wall_clock.h>
+#include <ritr/metrics/mesh_metrics.h>
+#include <ritr/output/run_directory.h>
+#include <ritr/output/vtk_files.h>
+#include <ritr/time/simulation.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace ritr
+{
+  namespace
+  {
+
+    std::string numbered(const std::string &stem, const unsigned int n, const std::string &ext)
+    {
+      std::ostringstream s;
+      s << stem << '-' << std::setw(5) << std::setfill('0') << n << ext;
+      return s.str();
+    }
+
+    std::string json_string(const std::string &text)
+    {
+      std::ostringstream s;
+      s << '"';
+      for (const char c : text)
+        if (c == '"' || c == '\\')
+          s << '\\' << c;
+        else if (static_cast<unsigned char>(c) < 0x20)
+          s << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
+        else
+          s << c;
+      s << '"';
+      return s.str();
+    }
+  } // namespace
+
+  template <int dim>
+  void Simulation<dim>::write_step_output(const unsigned int step)
+  {
+    RunOutputs &out = *outputs_;
+    const auto dir = out.directory;
+
+    VtuPiece piece;
+    for (const auto &cell : mesh_.cells)
+      piece.cells.emplace_back(cell.begin(), cell.end());
+    const auto field = [&](const std::string &name, const Eigen::VectorXd &v) {
+      return VtuField{name, 3, pad_to_3d(v, dim)};
+    };
+    piece.point_data = {field("displacement", x_ - u_), field("velocity", v_),
+                        field("reference_position", u_), field("contact_force", contact_forces())};
+    const auto strains = cell_strains(mesh_, x_, u_);
+    const auto quality = cell_qualities(mesh_, u_);
+    VtuField   strain{"strain", 1, Eigen::Map<const Eigen::VectorXd>(strains.data(), strains.size())};
+    VtuField   material{"material_id", 1, Eigen::VectorXd(mesh_.n_cells())};
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      material.values[c] = mesh_.cell_material[c];
+    VtuField element_quality{"element_quality", 1, Eigen::Map<const Eigen::VectorXd>(quality.data(), quality.size())};
+    piece.cell_data = {strain, material, element_quality};
+
+    const auto as_points = [&](const Eigen::VectorXd &p) {
+      const Eigen::VectorXd padded = pad_to_3d(p, dim);
+      return Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+        padded.data(), padded.size() / 3, 3));
+    };
+    piece.points = as_points(x_);
+    write_vtu((dir / numbered("solution", step, ".vtu")).string(), piece);
+    out.solution.add(time_, numbered("solution", step, ".vtu"));
+    piece.points = as_points(u_);
+    write_vtu((dir / numbered("reference", step, ".vtu")).string(), piece);
+    out.reference.add(time_, numbered("reference", step, ".vtu"));
+
+    if (!obstacles_.empty())
+      {
+        VtuPiece     obstacle_piece;
+        obstacle_piece.points = as_points(obstacle_positions_);
+        unsigned int offset   = 0;
+        for (const auto &o : obstacles_)
+          {
+            if constexpr (dim == 1)
+              obstacle_piece.cells.push_back({offset});
+            for (const auto &e : o.edges)
+              obstacle_piece.cells.push_back({offset + e[0], offset + e[1]});
+            for (const auto &f : o.faces)
+              obstacle_piece.cells.push_back({offset + f[0], offset + f[1], offset + f[2]});
+            offset += o.rest_vertices.size();
+          }
+        write_vtu((dir / numbered("obstacles", step, ".vtu")).string(), obstacle_piece);
+        out.obstacles.add(time_, numbered("obstacles", step, ".vtu"));
+      }
+
+    if (scene_.write_nodal_csv)
+      write_file_atomically((dir / numbered("nodes", step, ".csv")).string(), [&](std::ostream &s) {
+        const char *axes = "xyz";
+        s << "id";
+        for (const char *q : {"u", "x", "v"})
+          for (int k = 0; k < dim; ++k)
+            s << ',' << q << '_' << axes[k];
+        s << '\n';
+        for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
+          {
+            s << i;
+            for (const Eigen::VectorXd *q : {&u_, &x_, &v_})
+              for (int k = 0; k < dim; ++k)
+                s << ',' << (*q)[i * dim + k];
+            s << '\n';
+          }
+      });
+  }
+
+  template <int dim>
+  void Simulation<dim>::write_summary(const double total_seconds, const bool complete,
+                                      const std::string &failure) const
+  {
+    unsigned int newton = 0, outer = 0, trials = 0;
+    double       inner_seconds = 0, transfer_seconds = 0, outer_seconds = 0, max_sliding = 0;
+    for (const auto &r : history_)
+      {
+        newton += r.newton_iterations;
+        outer += r.outer_iterations;
+        trials += r.line_search_trials;
+        inner_seconds += r.inner_seconds;
+        transfer_seconds += r.transfer_seconds;
+        outer_seconds += r.outer_solve_seconds;
+        max_sliding = std::max(max_sliding, r.sliding_violation);
+      }
+    write_file_atomically((outputs_->directory / "summary.json").string(), [&](std::ostream &s) {
+      s << "{\n  \"complete\": " << (complete ? "true" : "false") << ",\n";
+      if (!failure.empty())
+        s << "  \"failure\": " << json_string(failure) << ",\n";
+      s << "  \"scene\": " << json_string(scene_.parameter_file) << ",\n"
+        << "  \"dimension\": " << dim << ",\n"
+        << "  \"mode\": \"" << scene_.mode << "\",\n"
+        << "  \"adaptivity\": " << (ritr_ ? "true" : "false") << ",\n"
+        << "  \"steps\": " << history_.size() << ",\n"
+        << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
+        << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
+        << "  \"total_wall_seconds\": " << total_seconds << ",\n"
+        << "  \"wall_seconds_per_step\": " << total_seconds / std::max<std::size_t>(1, history_.size()) << ",\n"
+        << "  \"linear_solve_seconds\": " << newton_solver().seconds_in_linear_solves() << ",\n"
+        << "  \"symbolic_factorizations\": " << newton_solver().linear_solver().n_symbolic_analyses() << ",\n"
+        << "  \"numeric_factorizations\": " << newton_solver().linear_solver().n_factorizations() << ",\n"
+        << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
+        << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
+        << "  \"total_newton_iterations\": " << newton << ",\n"
+        << "  \"total_outer_iterations\": " << outer << ",\n"
+        << "  \"total_line_search_trials\": " << trials << ",\n"
+        << "  \"inner_solve_seconds\": " << inner_seconds << ",\n"
+        << "  \"transfer_seconds\": " << transfer_seconds << ",\n"
+        << "  \"outer_solve_seconds\": " << outer_seconds << ",\n"
+        << "  \"max_sliding_violation\": " << max_sliding << ",\n"
+        << "  \"invariant_violations\": [";
+      for (std::size_t i = 0; i < invariant_violations_.size(); ++i)
+        s << (i ? ", " : "") << json_string(invariant_violations_[i]);
+      s << "]\n}\n";
+    });
+  }
+
+  template <int dim>
+  void Simulation<dim>::run()
+  {
+    const auto flush_log = [&] {
+      write_file_atomically((outputs_->directory / "log.csv").string(),
+                            [&](std::ostream &s) { s << outputs_->log.str(); });
+    };
+    // From here on the directory belongs to this run (the scene has been validated): its
+    // summary says "complete": false until the end, and nothing of a previous run stays.
+    std::filesystem::create_directories(scene_.output_directory);
+    outputs_ = std::make_unique<RunOutputs>(scene_.output_directory);
+    outputs_->log << "step,time,n_vertices,energy,inner_newton_iterations,outer_iterations,line_search_trials,"
+                     "initial_objective,sliding_violation,min_distance,min_reference_measure,"
+                     "min_deformed_jacobian,inner_solve_seconds,transfer_seconds,outer_solve_seconds,"
+                     "wall_seconds\n";
+    write_summary(0, false);
+    remove_previous_outputs(outputs_->directory);
+    flush_log();
+    write_step_output(0);
+    const unsigned int n_steps = scene_.n_steps();
+    const auto         start   = std::chrono::steady_clock::now();
+    try
+      {
+        while (step_ < n_steps)
+          {
+            const StepReport r = advance();
+            outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
+                          << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
+                          << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
+                          << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.inner_seconds
+                          << ',' << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds
+                          << '\n';
+            flush_log();
+            if (step_ % scene_.output_every == 0 || step_ == n_steps)
+              write_step_output(step_);
+            const double elapsed = seconds_since(start);
+            std::cout << "step " << r.step << '/' << n_steps << "  t=" << std::setprecision(4) << r.time
+                      << "  newton=" << r.newton_iterations << "  E=" << std::setprecision(6) << r.energy
+                      << "  elapsed=" << std::setprecision(3) << elapsed << "s  eta="
+                      << elapsed / r.step * (n_steps - r.step) << "s" << std::endl;
+          }
+      }
+    catch (const ConvergenceError &e)
+      {
+        write_summary(seconds_since(start), false, e.what());
+        throw;
+      }
+    write_summary(seconds_since(start), true);
+  }
+
+  template class Simulation<1>;
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace ritr
