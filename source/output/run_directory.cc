@@ -36,7 +36,8 @@ namespace ritr
   bool is_run_output(const std::string &file_name)
   {
     const std::string name = ends_with(file_name, ".tmp") ? file_name.substr(0, file_name.size() - 4) : file_name;
-    for (const char *fixed : {"summary.json", "log.csv", "solution.pvd", "reference.pvd", "obstacles.pvd"})
+    for (const char *fixed :
+         {"summary.json", "log.csv", "newton.csv", "solution.pvd", "reference.pvd", "obstacles.pvd"})
       if (name == fixed)
         return true;
     return is_numbered(name, "solution", ".vtu") || is_numbered(name, "reference", ".vtu") ||

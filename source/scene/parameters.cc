@@ -114,6 +114,7 @@ namespace ritr
       prm.declare_entry("static tolerance", "1e-8", Patterns::Double(0), "Statics: stop when |dx|_inf < this times the bounding-box diagonal.");
       prm.declare_entry("max iterations", "200", Patterns::Integer(1), "Newton iterations per solve before the run stops (exit code 3).");
       prm.declare_entry("threads", "0", Patterns::Integer(0), "Assembly threads (0: all cores).");
+      prm.declare_entry("newton log", "false", Patterns::Bool(), "Also write newton.csv: one row per Newton iteration (energy, step and gradient norms, predicted decrease, CCD bound, accepted step, barrier stiffness, closest active distance), for diagnosing slow or failed solves.");
       prm.leave_subsection();
     }
 
@@ -369,6 +370,7 @@ namespace ritr
       s.solver.static_tolerance = prm.get_double("static tolerance");
       s.solver.max_iterations   = prm.get_integer("max iterations");
       s.solver.threads          = prm.get_integer("threads");
+      s.solver.newton_log       = prm.get_bool("newton log");
       prm.leave_subsection();
       return s;
     }

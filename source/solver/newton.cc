@@ -105,12 +105,15 @@ namespace ritr
         // moving the direction need not be a descent direction, so only finiteness (no
         // inversion) is required then; afterwards Armijo's sufficient decrease -- judged on
         // the gradient norm once the predicted decrease is below the energy's round-off.
-        double       alpha      = std::min(1.0, objective.max_step(z, dz));
+        const double ccd_bound  = std::min(1.0, objective.max_step(z, dz));
+        double       alpha      = ccd_bound;
         const double decrease   = g.dot(dz);
         const bool   use_armijo = !kinematic_pending;
         const double round_off  = energy_round_off(e0);
         const double gradient_norm = free_norm(g, free_index);
         Eigen::VectorXd trial, trial_gradient(n);
+        double          trial_energy = e0;
+        bool            judged_by_gradient = false;
         for (;; alpha *= 0.5)
           {
             ++result.line_search_trials;
@@ -125,8 +128,10 @@ namespace ritr
                 result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
                 return result;
               }
-            trial          = z + alpha * dz;
-            const double e = objective.value(trial);
+            trial              = z + alpha * dz;
+            const double e     = objective.value(trial);
+            trial_energy       = e;
+            judged_by_gradient = false;
             if (!std::isfinite(e))
               continue;
             if (!use_armijo)
@@ -140,6 +145,7 @@ namespace ritr
             // The energy cannot resolve this step: an Armijo test on it passes or fails by
             // round-off, which once stalled Newton on "accepted" steps of 1e-6 that changed
             // nothing. The gradient, far from round-off, still tells progress.
+            judged_by_gradient = true;
             trial_gradient.setZero();
             objective.gradient(trial, trial_gradient);
             if (free_norm(trial_gradient, free_index) < gradient_norm)
@@ -151,6 +157,10 @@ namespace ritr
           for (Eigen::Index i = 0; i < n; ++i)
             if (kinematic[i])
               z[i] = targets[i];
+        if (settings.monitor)
+          settings.monitor({result.iterations, e0, trial_energy - e0, decrease, result.last_step_norm,
+                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient},
+                           z);
       }
     result.failure = "no convergence in " + std::to_string(settings.max_iterations) + " Newton iterations";
     return result;

@@ -121,6 +121,10 @@ namespace ritr
       contact_ && scene.contact.friction_coefficient > 0 ? scene.contact.friction_iterations : 1;
     step_settings.barrier_stiffness = scene.contact.barrier_stiffness;
     step_settings.dhat              = scene.contact.dhat;
+    if (scene.solver.newton_log)
+      step_settings.newton.monitor = [this](const NewtonIterationRecord &record, const Eigen::VectorXd &z) {
+        log_newton_iteration(record, z);
+      };
     implicit_step_ = std::make_unique<ImplicitStep<dim>>(*bulk_, contact_.get(), kinematic_, step_settings);
     if (scene.adaptivity.enabled)
       setup_adaptivity();

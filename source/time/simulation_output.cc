@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace ritr
@@ -163,11 +164,32 @@ namespace ritr
   }
 
   template <int dim>
+  void Simulation<dim>::log_newton_iteration(const NewtonIterationRecord &record, const Eigen::VectorXd &z)
+  {
+    if (!outputs_)
+      return;  // a simulation driven step by step (tests) writes no files
+    if (logged_step_ != step_ + 1)
+      logged_step_ = step_ + 1, logged_solve_ = 0;
+    if (record.iteration == 0)
+      ++logged_solve_;
+    auto &s = outputs_->newton_log;
+    s << logged_step_ << ',' << logged_solve_ << ',' << record.iteration << ',' << std::setprecision(17)
+      << record.energy << std::setprecision(6) << ',' << record.energy_change << ',' << record.predicted_decrease
+      << ',' << record.step_norm << ',' << record.gradient_norm << ',' << record.ccd_bound << ',' << record.alpha
+      << ',' << record.prescribed_moving << ',' << record.judged_by_gradient << ','
+      << (contact_ ? contact_->stiffness() : 0.0) << ','
+      << (contact_ ? contact_->active_minimum_distance(z) : std::numeric_limits<double>::infinity()) << '\n';
+  }
+
+  template <int dim>
   void Simulation<dim>::run()
   {
     const auto flush_log = [&] {
       write_file_atomically((outputs_->directory / "log.csv").string(),
                             [&](std::ostream &s) { s << outputs_->log.str(); });
+      if (scene_.solver.newton_log)
+        write_file_atomically((outputs_->directory / "newton.csv").string(),
+                              [&](std::ostream &s) { s << outputs_->newton_log.str(); });
     };
     // From here on the directory belongs to this run (the scene has been validated): its
     // summary says "complete": false until the end, and nothing of a previous run stays.
@@ -177,6 +199,9 @@ namespace ritr
                      "initial_objective,sliding_violation,min_distance,min_reference_measure,"
                      "min_deformed_jacobian,inner_solve_seconds,transfer_seconds,outer_solve_seconds,"
                      "wall_seconds\n";
+    outputs_->newton_log << "step,solve,iteration,energy,energy_change,predicted_decrease,step_norm,"
+                            "gradient_norm,ccd_bound,alpha,prescribed_moving,judged_by_gradient,"
+                            "barrier_stiffness,min_active_distance\n";
     write_summary(0, false);
     remove_previous_outputs(outputs_->directory);
     flush_log();
@@ -206,6 +231,7 @@ namespace ritr
       }
     catch (const ConvergenceError &e)
       {
+        flush_log();  // newton.csv then shows the iterations of the failed step
         write_summary(seconds_since(start), false, e.what());
         throw;
       }

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the ritr executable (path from the RITR_BINARY environment variable that ctest sets)
 // and captures its exit code and standard error; reads and writes whole files and folders.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace ritr::test_support
 {
@@ -73,6 +75,52 @@ end
   inline void write_file(const std::string &path, const std::string &text)
   {
     std::ofstream(path, std::ios::binary) << text;
+  }
+
+  // A CSV file of ritr's (log.csv, newton.csv): a header of column names, numeric rows.
+  struct CsvTable
+  {
+    std::vector<std::string>         header;
+    std::vector<std::vector<double>> rows;
+
+    // Index of the named column (header.size() when there is none).
+    std::size_t column(const std::string &name) const
+    {
+      return std::find(header.begin(), header.end(), name) - header.begin();
+    }
+  };
+
+  inline CsvTable read_csv(const std::string &path)
+  {
+    CsvTable           table;
+    std::istringstream in(read_file(path));
+    std::string        line;
+    for (bool first = true; std::getline(in, line); first = false)
+      {
+        std::istringstream cells(line);
+        std::string        cell;
+        if (!first)
+          table.rows.emplace_back();
+        while (std::getline(cells, cell, ','))
+          if (first)
+            table.header.push_back(cell);
+          else
+            table.rows.back().push_back(std::stod(cell));
+      }
+    return table;
+  }
+
+  // Writes NAME.prm: the scene prm/verification/NAME.prm with its output directory set to
+  // `directory` and `extra` (whole subsections) appended. Returns the file's name.
+  inline std::string scene_variant(const std::string &name, const std::string &variant,
+                                   const std::string &directory, const std::string &extra)
+  {
+    std::string       text = read_file(source_dir() + "/prm/verification/" + name + ".prm");
+    const std::size_t at   = text.find("set output directory");
+    text.replace(at, text.find('\n', at) - at, "set output directory = " + directory);
+    const std::string file = name + "-" + variant + ".prm";
+    write_file(file, text + extra);
+    return file;
   }
 
   // Every file and folder under `folder`, with the files' contents, to compare byte for byte.

@@ -17,35 +17,16 @@ namespace
     const RunResult r = run_ritr(file);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(read_file(directory + "/summary.json").find("\"invariant_violations\": []"), std::string::npos);
-    std::istringstream log(read_file(directory + "/log.csv"));
-    std::string        line;
-    std::getline(log, line);  // header: find the columns by name
-    std::vector<std::string> header;
-    {
-      std::istringstream cells(line);
-      std::string        cell;
-      while (std::getline(cells, cell, ','))
-        header.push_back(cell);
-    }
-    const auto column = [&](const std::string &name) {
-      return std::find(header.begin(), header.end(), name) - header.begin();
-    };
-    const auto distance = column("min_distance"), jacobian = column("min_deformed_jacobian");
-    ASSERT_LT(jacobian, static_cast<long>(header.size()));
-    int rows = 0;
-    while (std::getline(log, line))
+    const CsvTable log      = read_csv(directory + "/log.csv");
+    const auto     distance = log.column("min_distance"), jacobian = log.column("min_deformed_jacobian");
+    ASSERT_LT(jacobian, log.header.size());
+    for (const auto &v : log.rows)
       {
-        std::vector<double> v;
-        std::istringstream  cells(line);
-        std::string         cell;
-        while (std::getline(cells, cell, ','))
-          v.push_back(std::stod(cell));
-        ASSERT_EQ(v.size(), header.size());
+        ASSERT_EQ(v.size(), log.header.size());
         EXPECT_GT(v[distance], 0.0) << "step " << v[0] << ": bodies touch or intersect";
         EXPECT_GT(v[jacobian], 0.0) << "step " << v[0] << ": an element inverted";
-        ++rows;
       }
-    EXPECT_GT(rows, 0);
+    EXPECT_GT(log.rows.size(), 0u);
   }
 
   void run_scene(const std::string &name)

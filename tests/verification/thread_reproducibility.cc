@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <regex>
 #include <sstream>
 
 #include "run_ritr.h"
@@ -20,12 +19,8 @@ namespace
                                const std::string &tag)
   {
     const std::string directory = "output/threads/" + scene + "-" + tag;
-    std::string       text = read_file(source_dir() + "/prm/verification/" + scene + ".prm");
-    text = std::regex_replace(text, std::regex("set output directory *=[^\n]*"),
-                              "set output directory = " + directory);
-    text += "subsection Solver\n  set threads = " + std::to_string(threads) + "\nend\n";
-    const std::string file = scene + "-" + tag + ".prm";
-    write_file(file, text);
+    const std::string file      = scene_variant(scene, tag, directory,
+                                           "subsection Solver\n  set threads = " + std::to_string(threads) + "\nend\n");
     const RunResult r = run_ritr(file);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return directory;

@@ -11,7 +11,8 @@
 namespace ritr
 {
   // Whether `name` is a file that a run writes, or its temporary (NAME.tmp): summary.json,
-  // log.csv, the .pvd collections, solution-/reference-/obstacles-NNNNN.vtu, nodes-NNNNN.csv.
+  // log.csv, newton.csv, the .pvd collections, solution-/reference-/obstacles-NNNNN.vtu,
+  // nodes-NNNNN.csv.
   bool is_run_output(const std::string &name);
 
   // Why `directory` cannot hold a run's outputs ("" when it can); touches nothing.
@@ -30,6 +31,7 @@ namespace ritr
     std::filesystem::path directory;
     PvdCollection         solution, reference, obstacles;
     std::ostringstream    log;
+    std::ostringstream    newton_log;  // newton.csv, when the scene asks for it
   };
 
   // Removes the previous run's outputs and stale temporaries except summary.json, which the

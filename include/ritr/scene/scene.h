@@ -76,6 +76,7 @@ namespace ritr
     double       static_tolerance = 1e-8;  // statics: on |dx|_inf / bounding-box diagonal
     unsigned int max_iterations   = 200;
     unsigned int threads          = 0;  // 0: all cores
+    bool         newton_log       = false;  // newton.csv: one row per Newton iteration
   };
 
   struct Scene

@@ -9,6 +9,7 @@
 
 #include <Eigen/Sparse>
 
+#include <functional>
 #include <vector>
 
 namespace ritr
@@ -34,12 +35,29 @@ namespace ritr
     }
   };
 
+  // What decided one Newton iteration (a row of newton.csv with Solver/newton log).
+  struct NewtonIterationRecord
+  {
+    unsigned int iteration          = 0;
+    double       energy             = 0;  // at the start of the iteration
+    double       energy_change      = 0;  // over the accepted step
+    double       predicted_decrease = 0;  // g.dz over the full step (negative: descent)
+    double       step_norm          = 0;  // |dz|_inf
+    double       gradient_norm      = 0;  // |g|_2 over the free entries
+    double       ccd_bound          = 1;  // largest intersection-free fraction of dz
+    double       alpha              = 1;  // accepted fraction
+    bool         prescribed_moving  = false;  // kinematic entries not yet at their targets
+    bool         judged_by_gradient = false;  // step below the energy's round-off
+  };
+
   struct NewtonSettings
   {
     double       tolerance      = 1e-6;  // on the infinity norm of the Newton step
     unsigned int max_iterations = 200;
     double       armijo         = 1e-4;
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
+    // Called after every accepted step with the new iterate (empty: no log).
+    std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
   };
 
   struct NewtonResult

@@ -76,6 +76,8 @@ namespace ritr
     void            check_invariants(StepReport &report);
     Eigen::VectorXd state() const;
     void write_step_output(unsigned int step);
+    // A row of newton.csv (Solver/newton log); rows are numbered by step and by solve.
+    void log_newton_iteration(const NewtonIterationRecord &record, const Eigen::VectorXd &z);
     // summary.json; `complete` only when every step is done, `failure` says why not.
     void write_summary(double total_seconds, bool complete, const std::string &failure = "") const;
 
@@ -97,5 +99,6 @@ namespace ritr
     std::vector<StepReport>                    history_;
     std::vector<std::string>                   invariant_violations_;
     std::unique_ptr<RunOutputs>                outputs_;
+    unsigned int                               logged_step_ = 0, logged_solve_ = 0;
   };
 } // namespace ritr

@@ -1,0 +1,63 @@
+// Solver/newton log: newton.csv holds one row per Newton iteration, also for a step that
+// fails. On the 80 m/s bar the rows show what the solver does near convergence: steps whose
+// predicted decrease is below the energy's round-off are judged by the gradient norm, and
+// every step judged on the energy lowers it once the prescribed motion is complete.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "run_ritr.h"
+
+using namespace ritr::test_support;
+
+namespace
+{
+  const std::string log_on = "subsection Solver\n  set newton log = true\nend\n";
+
+  std::size_t summary_count(const std::string &directory, const std::string &key)
+  {
+    const std::string summary = read_file(directory + "/summary.json");
+    const std::size_t at      = summary.find("\"" + key + "\": ");
+    return at == std::string::npos ? 0 : std::stoul(summary.substr(at + key.size() + 4));
+  }
+} // namespace
+
+TEST(NewtonLog, OneRowPerIterationOnTheFastBar)
+{
+  const std::string directory = "output/newton_log/bar";
+  const RunResult   r         = run_ritr(scene_variant("bar_impact_fine_2d", "log", directory, log_on));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const CsvTable log = read_csv(directory + "/newton.csv");
+  EXPECT_EQ(log.rows.size(), summary_count(directory, "total_newton_iterations"));
+  ASSERT_GT(log.rows.size(), 30u);
+  const auto change = log.column("energy_change"), moving = log.column("prescribed_moving"),
+             by_gradient = log.column("judged_by_gradient"), kappa = log.column("barrier_stiffness");
+  ASSERT_LT(kappa, log.header.size());
+  unsigned int judged_by_gradient = 0;
+  for (const auto &row : log.rows)
+    {
+      ASSERT_EQ(row.size(), log.header.size());
+      EXPECT_GT(row[kappa], 0.0);
+      if (row[by_gradient] == 1)
+        ++judged_by_gradient;
+      else if (row[moving] == 0)
+        EXPECT_LE(row[change], 0.0) << "step " << row[0] << ", iteration " << row[2];
+    }
+  EXPECT_GT(judged_by_gradient, 0u);
+}
+
+TEST(NewtonLog, FailedStepKeepsItsIterations)
+{
+  const std::string directory = "output/newton_log/failed";
+  const RunResult   r         = run_ritr(scene_variant("bar_impact_fine_2d", "failed", directory,
+                                                 "subsection Solver\n  set newton log = true\n"
+                                                 "  set max iterations = 3\nend\n"));
+  ASSERT_EQ(r.exit_code, 3) << r.output;
+  const CsvTable log = read_csv(directory + "/newton.csv");
+  ASSERT_EQ(log.rows.size(), 3u);
+  for (unsigned int i = 0; i < 3; ++i)
+    {
+      EXPECT_EQ(log.rows[i][log.column("step")], 1.0);
+      EXPECT_EQ(log.rows[i][log.column("iteration")], double(i));
+    }
+}
