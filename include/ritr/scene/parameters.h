@@ -1,21 +1,14 @@
 #pragma once
 // The .prm schema (deal.II ParameterHandler): declaration with documentation and defaults,
 // parsing, and validation into a Scene with one-line error messages.
+#include <ritr/common/input_error.h>
 #include <ritr/scene/scene.h>
 
 #include <ostream>
-#include <stdexcept>
 #include <string>
 
 namespace ritr
 {
-  // Bad input: the message names the file, the entry and what is wrong.
-  class InputError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
   // Reads and validates a scene; throws InputError.
   Scene read_scene(const std::string &parameter_file);
 
