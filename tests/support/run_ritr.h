@@ -19,9 +19,10 @@ namespace ritr::test_support
 
   inline std::string source_dir() { return std::getenv("RITR_SOURCE_DIR"); }
 
-  inline RunResult run_ritr(const std::string &arguments)
+  // Runs a shell command line with stderr joined to stdout.
+  inline RunResult run_command(const std::string &command_line)
   {
-    const std::string command = std::string(std::getenv("RITR_BINARY")) + " " + arguments + " 2>&1";
+    const std::string command = command_line + " 2>&1";
     RunResult         r;
     FILE             *pipe = popen(command.c_str(), "r");
     std::array<char, 4096> buffer;
@@ -30,6 +31,11 @@ namespace ritr::test_support
     const int status = pclose(pipe);
     r.exit_code      = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+  }
+
+  inline RunResult run_ritr(const std::string &arguments)
+  {
+    return run_command(std::string(std::getenv("RITR_BINARY")) + " " + arguments);
   }
 
   inline std::string read_file(const std::string &path)
