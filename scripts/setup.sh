@@ -6,7 +6,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
 
 packages=(build-essential cmake libdeal.ii-dev libeigen3-dev libsuitesparse-dev libtbb-dev
-          libopenblas0-pthread libgtest-dev ccache)
+          libopenblas0-pthread libgtest-dev ccache libvtk9-dev libcgal-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

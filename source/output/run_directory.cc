@@ -1,5 +1,5 @@
 #include <ritr/output/run_directory.h>
-#include <ritr/scene/input_error.h>
+#include <ritr/common/input_error.h>
 
 #include <unistd.h>
 

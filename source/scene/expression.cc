@@ -1,5 +1,5 @@
 #include <ritr/scene/expression.h>
-#include <ritr/scene/input_error.h>
+#include <ritr/common/input_error.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/lac/vector.h>

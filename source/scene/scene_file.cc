@@ -1,4 +1,4 @@
-#include <ritr/scene/input_error.h>
+#include <ritr/common/input_error.h>
 #include <ritr/scene/scene_file.h>
 
 #include <algorithm>

@@ -50,10 +50,11 @@ end
 
   inline std::string source_dir() { return std::getenv("RITR_SOURCE_DIR"); }
 
-  // `redirections` says where the streams go ("2>&1": both are captured).
-  inline RunResult run_ritr(const std::string &arguments, const std::string &redirections = "2>&1")
+  // Runs a shell command line; `redirections` says where the streams go ("2>&1": both are
+  // captured).
+  inline RunResult run_command(const std::string &command_line, const std::string &redirections = "2>&1")
   {
-    const std::string command = std::string(std::getenv("RITR_BINARY")) + " " + arguments + " " + redirections;
+    const std::string command = command_line + " " + redirections;
     RunResult         r;
     FILE             *pipe = popen(command.c_str(), "r");
     std::array<char, 4096> buffer;
@@ -62,6 +63,11 @@ end
     const int status = pclose(pipe);
     r.exit_code      = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+  }
+
+  inline RunResult run_ritr(const std::string &arguments, const std::string &redirections = "2>&1")
+  {
+    return run_command(std::string(std::getenv("RITR_BINARY")) + " " + arguments, redirections);
   }
 
   inline std::string read_file(const std::string &path)

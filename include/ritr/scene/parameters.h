@@ -1,7 +1,7 @@
 #pragma once
 // The .prm schema (deal.II ParameterHandler): declaration with documentation and defaults,
 // parsing, and validation into a Scene with one-line error messages.
-#include <ritr/scene/input_error.h>
+#include <ritr/common/input_error.h>
 #include <ritr/scene/scene.h>
 
 #include <ostream>

@@ -1,5 +1,7 @@
 #pragma once
 // Bad input and the words that report it: one printable line however hostile the input.
+// Shared by ritr and ritr-compare; both map it to exit code 2 with its message as the single
+// line on stderr.
 #include <cstddef>
 #include <stdexcept>
 #include <string>
