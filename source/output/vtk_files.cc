@@ -1,6 +1,8 @@
 #include <ritr/common/atomic_file.h>
 #include <ritr/output/vtk_files.h>
 
+#include <iomanip>
+
 namespace ritr
 {
   namespace
@@ -76,6 +78,8 @@ namespace ritr
   {
     entries_.emplace_back(time, file);
     write_file_atomically(path_, [&](std::ostream &out) {
+      // Full precision: runs are paired frame by frame on these times (ritr-compare).
+      out << std::setprecision(17);
       out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
       for (const auto &[t, f] : entries_)
         out << "<DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << f << "\"/>\n";
