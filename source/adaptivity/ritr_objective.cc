@@ -173,7 +173,7 @@ namespace ritr
                   d.huu.emplace_back(t.col(), t.row(), t.value());
                 }
             Triplets hxx;
-            contact_->add_hessian(z, hxx);
+            contact_->add_hessian(z, hxx, true);
             for (const auto &t : hxx)
               if (t.row() < n_u && t.col() < n_u)
                 d.huu.push_back(t);
@@ -181,7 +181,7 @@ namespace ritr
         if (coupling)
           {
             contact_->add_gradient(z, d.gx);
-            contact_->add_hessian(z, d.hxx);
+            contact_->add_hessian(z, d.hxx, true);
             d.hxu.insert(d.hxu.end(), rd.hxu.begin(), rd.hxu.end());
           }
       }

@@ -333,12 +333,13 @@ namespace ritr
   }
 
   template <int dim>
-  void ContactPotential<dim>::add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h) const
+  void ContactPotential<dim>::add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h,
+                                          const bool project) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
-    scatter_hessian(contact::barrier_hessian<dim>(active_constraints(V), V, settings_.dhat, weights_, true), kappa_, h);
+    scatter_hessian(contact::barrier_hessian<dim>(active_constraints(V), V, settings_.dhat, weights_, project), kappa_, h);
     if (!friction_.empty())
-      scatter_hessian(contact::friction_hessian<dim>(friction_, V, friction_start_, settings_.epsilon_v_times_h, true), 1.0, h);
+      scatter_hessian(contact::friction_hessian<dim>(friction_, V, friction_start_, settings_.epsilon_v_times_h, project), 1.0, h);
   }
 
   template <int dim>

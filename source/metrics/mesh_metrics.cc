@@ -72,6 +72,21 @@ namespace ritr
     return usage.ru_maxrss * 1024L;  // Linux reports kilobytes
   }
 
+  template <int dim>
+  double bounding_box_diagonal(const Eigen::VectorXd &p)
+  {
+    double diagonal2 = 0;
+    for (int k = 0; k < dim; ++k)
+      {
+        const auto coordinates = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<dim>>(p.data() + k, p.size() / dim);
+        diagonal2 += std::pow(coordinates.maxCoeff() - coordinates.minCoeff(), 2);
+      }
+    return std::sqrt(diagonal2);
+  }
+
+  template double bounding_box_diagonal<1>(const Eigen::VectorXd &);
+  template double bounding_box_diagonal<2>(const Eigen::VectorXd &);
+  template double bounding_box_diagonal<3>(const Eigen::VectorXd &);
   template std::vector<double> cell_strains<1>(const SimplexMesh<1> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
   template std::vector<double> cell_strains<2>(const SimplexMesh<2> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
   template std::vector<double> cell_strains<3>(const SimplexMesh<3> &, const Eigen::VectorXd &, const Eigen::VectorXd &);

@@ -54,7 +54,7 @@ namespace ritr
         g.setZero();
         objective.gradient(z, g);
         h.clear();
-        objective.hessian(z, h);
+        objective.hessian(z, h, settings.projection == HessianProjection::always);
 
         // Prescribed part of the step, then the free part from
         // H_ff dz_f = -g_f - H_fk dz_k.
@@ -85,8 +85,8 @@ namespace ritr
           }
         reduced.setFromTriplets(reduced_triplets.begin(), reduced_triplets.end());
         reduced.makeCompressed();
-        const auto start = std::chrono::steady_clock::now();
-        cholesky_.factorize(reduced);
+        const auto   start = std::chrono::steady_clock::now();
+        const double shift = cholesky_.factorize(reduced);
         const Eigen::VectorXd dz_free = cholesky_.solve(rhs);
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (Eigen::Index i = 0; i < n; ++i)
@@ -159,7 +159,7 @@ namespace ritr
               z[i] = targets[i];
         if (settings.monitor)
           settings.monitor({result.iterations, e0, trial_energy - e0, decrease, result.last_step_norm,
-                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient},
+                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift},
                            z);
       }
     result.failure = "no convergence in " + std::to_string(settings.max_iterations) + " Newton iterations";

@@ -48,11 +48,11 @@ namespace ritr
   }
 
   template <int dim>
-  void IncrementalPotential<dim>::hessian(const Eigen::VectorXd &z, Triplets &h)
+  void IncrementalPotential<dim>::hessian(const Eigen::VectorXd &z, Triplets &h, const bool project)
   {
-    bulk_.add_hessian(body_positions(z), reference_, true, h);
+    bulk_.add_hessian(body_positions(z), reference_, project, h);
     if (contact_)
-      contact_->add_hessian(z, h);
+      contact_->add_hessian(z, h, project);
     // Obstacle vertices carry no mass; a unit diagonal keeps their (prescribed) rows regular.
     for (Eigen::Index i = reference_.size(); i < z.size(); ++i)
       h.emplace_back(i, i, 1.0);

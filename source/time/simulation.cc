@@ -114,9 +114,13 @@ namespace ritr
       }
     ImplicitStepSettings step_settings;
     step_settings.newton.max_iterations = scene.solver.max_iterations;
-    step_settings.newton.tolerance =
-      scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step :
-                        scene.solver.static_tolerance * (contact_ ? contact_->bbox_diagonal(state()) : 1.0);
+    step_settings.newton.projection =
+      scene.solver.exact_hessian ? HessianProjection::never : HessianProjection::always;
+    // Both tolerances are relative to the bodies' size, so that a scene means the same in any
+    // unit; obstacles (a ground plane may be any size) do not count.
+    const double length = bounding_box_diagonal<dim>(mesh_.reference);
+    step_settings.newton.tolerance = scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step * length :
+                                                       scene.solver.static_tolerance * length;
     step_settings.friction_iterations =
       contact_ && scene.contact.friction_coefficient > 0 ? scene.contact.friction_iterations : 1;
     step_settings.barrier_stiffness = scene.contact.barrier_stiffness;
@@ -147,14 +151,7 @@ namespace ritr
     settings.max_outer_iterations    = a.max_iterations;
     settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
     // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
-    double diagonal2 = 0;
-    for (int k = 0; k < dim; ++k)
-      {
-        const auto coordinates =
-          Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<dim>>(u_.data() + k, mesh_.n_nodes());
-        diagonal2 += std::pow(coordinates.maxCoeff() - coordinates.minCoeff(), 2);
-      }
-    settings.epsilon_r = a.epsilon_r * std::sqrt(diagonal2);
+    settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(u_);
     // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
     // integrand (kinks inside candidate cells) far better than low-order rules. A rod's cells
     // are cheap, so there the rule is repeated on sub-cells by default.

@@ -47,7 +47,7 @@ namespace ritr
 
     double value(const Eigen::VectorXd &z) const;  // kappa B + D, +inf on contact
     void   add_gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) const;
-    void   add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h) const;
+    void   add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h, bool project) const;
     // Unscaled barrier gradient dB/dz (for the stiffness initialisation).
     Eigen::VectorXd barrier_gradient(const Eigen::VectorXd &z) const;
 

@@ -22,6 +22,11 @@ namespace ritr
   double min_deformed_jacobian(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
                                const Eigen::VectorXd &u);
 
+  // Diagonal of the axis-aligned bounding box of nodal positions p (dim values per node): the
+  // length scale that solver tolerances are relative to.
+  template <int dim>
+  double bounding_box_diagonal(const Eigen::VectorXd &p);
+
   // Peak resident set size of this process in bytes.
   long peak_rss_bytes();
 } // namespace ritr

@@ -77,6 +77,7 @@ namespace ritr
     unsigned int max_iterations   = 200;
     unsigned int threads          = 0;  // 0: all cores
     bool         newton_log       = false;  // newton.csv: one row per Newton iteration
+    bool         exact_hessian    = false;  // Newton with the shifted exact Hessian, not projected
   };
 
   struct Scene

@@ -25,7 +25,9 @@ namespace ritr
     virtual void   begin_iteration(const Eigen::VectorXd &z) { (void)z; }
     virtual double value(const Eigen::VectorXd &z) = 0;  // +infinity when inadmissible
     virtual void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) = 0;
-    virtual void   hessian(const Eigen::VectorXd &z, Triplets &h) = 0;  // positive semi-definite
+    // With `project`, every element and contact stencil is projected onto the positive
+    // semi-definite cone; without, the exact Hessian (possibly indefinite).
+    virtual void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) = 0;
     // Largest fraction of dz that is certified intersection-free (1 without contact).
     virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
     {
@@ -48,6 +50,18 @@ namespace ritr
     double       alpha              = 1;  // accepted fraction
     bool         prescribed_moving  = false;  // kinematic entries not yet at their targets
     bool         judged_by_gradient = false;  // step below the energy's round-off
+    double       hessian_shift      = 0;  // multiple of the identity added to make it definite
+  };
+
+  // Which Hessian a Newton step solves with. Projecting every element and contact stencil
+  // onto the PSD cone (IPC's projected Newton) gives a descent direction that rarely runs
+  // into contact, but a different model of the energy wherever stencils are indefinite: near
+  // a sharp punch corner Newton then crawls linearly for thousands of iterations, where the
+  // exact Hessian converges quadratically -- and fails elsewhere (doc/method.md).
+  enum class HessianProjection
+  {
+    always,  // projected Newton
+    never    // exact Hessian, shifted by a multiple of the identity where indefinite
   };
 
   struct NewtonSettings
@@ -56,6 +70,7 @@ namespace ritr
     unsigned int max_iterations = 200;
     double       armijo         = 1e-4;
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
+    HessianProjection projection = HessianProjection::always;
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
   };

@@ -34,7 +34,7 @@ namespace ritr
     void begin_iteration(const Eigen::VectorXd &z) override;
     double value(const Eigen::VectorXd &z) override;
     void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) override;
-    void   hessian(const Eigen::VectorXd &z, Triplets &h) override;
+    void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) override;
     double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) override;
 
     // Gradient of the cell terms alone (IPC's stiffness initialisation compares it with

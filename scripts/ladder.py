@@ -1,0 +1,152 @@
+#!/usr/bin/python3
+"""Accuracy for cost: an r-ITR run of a scene against a fixed-mesh refinement ladder.
+
+    scripts/ladder.py SCENE.prm --fixed 0 1 2 3 [--quick] [--out RESULT.json]
+
+SCENE.prm is the r-ITR run (its `Adaptivity/enabled` is forced on). Fixed rung k is the
+same scene without adaptivity and with every body refined k more times (edge subdivision,
+the paper's ladder). Each run is its own process; wall time and peak resident memory are
+taken from outside it (wait4), and so is the start-up baseline (`ritr --help`), which memory
+ratios subtract. Accuracy is the mean over frames of the Hausdorff distance between deformed
+boundaries (`ritr-compare`) to the finest fixed rung. The headline: the coarsest fixed rung at
+least as accurate as r-ITR, and r-ITR's time and memory ratios to it.
+
+`--quick` runs two steps of r-ITR and of the two coarsest rungs, so that a scene cannot rot
+unnoticed. The exit code is 1 if any run failed or broke an invariant (the JSON is written
+first: a failing run stays in the results).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from prm_variant import entries, write_variant  # noqa: E402
+
+
+def measure(command, log_path):
+    """(exit code, wall seconds, peak RSS in bytes) of one process."""
+    start = time.monotonic()
+    with open(log_path, "w") as log:
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(process.pid, 0)
+    process.returncode = os.waitstatus_to_exitcode(status)
+    return process.returncode, time.monotonic() - start, usage.ru_maxrss * 1024
+
+
+def body_sections(text):
+    return sorted({path.split("/")[0] for path in entries(text) if path.startswith("Body ")}) or ["Body 0"]
+
+
+def run_rung(args, scene_text, name, overrides, work):
+    directory = os.path.join(work, name)
+    overrides = dict(overrides, **{"output directory": directory})
+    if args.quick:
+        step = float(entries(scene_text).get("time step", "0.01"))
+        overrides["end time"] = repr(2 * step)
+        overrides["output every"] = "1"
+    prm = write_variant(args.scene, overrides, os.path.join(work, name + ".prm"))
+    code, wall, rss = measure([args.ritr, prm], os.path.join(work, name + ".log"))
+    run = {"name": name, "exit_code": code, "wall_seconds": wall, "peak_rss_bytes": rss, "directory": directory}
+    try:
+        with open(os.path.join(directory, "summary.json")) as f:
+            summary = json.load(f)
+        for key in ("complete", "n_vertices", "final_energy", "total_newton_iterations", "total_outer_iterations",
+                    "total_wall_seconds", "invariant_violations", "failure"):
+            if key in summary:
+                run[key] = summary[key]
+    except (OSError, ValueError) as e:
+        run["failure"] = f"no summary.json: {e}"
+    print(f"ladder: {name}: exit {code}, {run.get('n_vertices', '?')} vertices, {wall:.1f} s, "
+          f"{rss / 2**20:.0f} MiB", flush=True)
+    return run
+
+
+def compare(args, run, reference):
+    result = subprocess.run([args.compare, run["directory"], reference["directory"]], capture_output=True, text=True)
+    if result.returncode != 0:
+        run["compare_failure"] = result.stderr.strip()
+        return
+    c = json.loads(result.stdout)
+    run.update(mean_hausdorff=c["mean_hausdorff"], max_hausdorff=c["max_hausdorff"],
+               centroid_distance_mean=c["centroid_distance_mean"],
+               hausdorff_over_time=[[f["time"], f["hausdorff"]] for f in c["per_frame"]])
+
+
+def headline(runs, reference, baseline_rss):
+    ritr = runs[0]
+    candidates = [r for r in runs[1:] if r is not reference and "mean_hausdorff" in r]
+    if "mean_hausdorff" not in ritr:
+        return {"matching_fixed": None, "why": "r-ITR has no accuracy figure (failed run or comparison)"}
+    matching = next((r for r in candidates if r["mean_hausdorff"] <= ritr["mean_hausdorff"]), None)
+    if matching is None:
+        matching, why = reference, "no coarser fixed rung is as accurate; the reference rung is"
+    else:
+        why = "coarsest fixed rung with mean Hausdorff <= r-ITR's"
+    memory = lambda r: max(r["peak_rss_bytes"] - baseline_rss, 1)
+    return {"matching_fixed": matching["name"], "why": why,
+            "vertex_ratio": matching.get("n_vertices", 0) / max(ritr.get("n_vertices", 1), 1),
+            "time_ratio_ritr_to_fixed": ritr["wall_seconds"] / matching["wall_seconds"],
+            "memory_ratio_ritr_to_fixed": memory(ritr) / memory(matching),
+            "memory_note": "peak RSS minus the start-up baseline of `ritr --help`"}
+
+
+def main():
+    build = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build")
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    p.add_argument("scene")
+    p.add_argument("--fixed", type=int, nargs="+", required=True, help="refinements of the fixed rungs")
+    p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
+                   help="override for every run, e.g. 'Adaptivity/epsilon r=1e-6'")
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--out", help="result JSON (default: stdout)")
+    p.add_argument("--work", help="directory for the runs (default: a temporary one)")
+    p.add_argument("--ritr", default=os.path.join(build, "ritr"))
+    p.add_argument("--compare", default=os.path.join(build, "ritr-compare"))
+    args = p.parse_args()
+
+    with open(args.scene) as f:
+        scene_text = f.read()
+    common = dict(item.split("=", 1) for item in args.set)
+    rungs = sorted(args.fixed)[:2] if args.quick else sorted(args.fixed)
+    work = args.work or tempfile.mkdtemp(prefix="ladder-")
+    os.makedirs(work, exist_ok=True)
+    _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
+
+    settings = entries(scene_text)
+    runs = [run_rung(args, scene_text, "ritr", dict(common, **{"Adaptivity/enabled": "true"}), work)]
+    for k in rungs:
+        overrides = dict(common, **{"Adaptivity/enabled": "false"})
+        for body in body_sections(scene_text):
+            overrides[f"{body}/refinements"] = str(int(settings.get(f"{body}/refinements", "0")) + k)
+        run = run_rung(args, scene_text, f"fixed_r{k}", overrides, work)
+        run["refinements"] = k
+        runs.append(run)
+    reference = runs[-1]
+    for run in runs[:-1]:
+        compare(args, run, reference)
+
+    result = {"scene": os.path.relpath(args.scene), "quick": args.quick, "overrides": common,
+              "baseline_rss_bytes": baseline_rss, "reference": reference["name"], "runs": runs,
+              "headline": headline(runs, reference, baseline_rss)}
+    for run in runs:
+        run.pop("directory")
+    text = json.dumps(result, indent=1)
+    if args.out:
+        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+        with open(args.out, "w") as f:
+            f.write(text + "\n")
+    else:
+        print(text)
+    bad = [r["name"] for r in runs if r["exit_code"] != 0 or r.get("invariant_violations")]
+    if bad:
+        print("ladder: failed or broke an invariant: " + ", ".join(bad), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,98 @@
+#!/usr/bin/python3
+"""Plots and a Markdown table of one ladder result (scripts/ladder.py).
+
+    scripts/ladder_report.py RESULT.json [--plots DIR]
+
+Prints the table to stdout and writes two PNGs beside the JSON (or into DIR):
+NAME_hausdorff.png (Hausdorff distance to the reference rung over time, one line per run) and
+NAME_cost.png (mean Hausdorff against wall time and against vertices, r-ITR marked).
+"""
+import argparse
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def table(result):
+    base = result["baseline_rss_bytes"]
+    lines = ["| run | vertices | wall [s] | peak RSS - baseline [MiB] | Newton its | outer its | final energy "
+             "| mean Hausdorff | max Hausdorff | exit |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for r in result["runs"]:
+        if r["name"] == result["reference"]:
+            accuracy = "reference | reference"
+        elif "mean_hausdorff" in r:
+            accuracy = f"{r['mean_hausdorff']:.3g} | {r['max_hausdorff']:.3g}"
+        else:
+            accuracy = "- | -"
+        lines.append(f"| {r['name']} | {r.get('n_vertices', '?'):,} | {r['wall_seconds']:.1f} "
+                     f"| {(r['peak_rss_bytes'] - base) / 2**20:.0f} | {r.get('total_newton_iterations', '-')} "
+                     f"| {r.get('total_outer_iterations', '-')} | {r.get('final_energy', float('nan')):.6g} "
+                     f"| {accuracy} | {r['exit_code']} |")
+    h = result["headline"]
+    if h.get("matching_fixed"):
+        lines.append("")
+        lines.append(f"Headline: r-ITR matches `{h['matching_fixed']}` ({h['why']}): "
+                     f"{h['vertex_ratio']:.1f}x its vertices, time ratio r-ITR/fixed "
+                     f"{h['time_ratio_ritr_to_fixed']:.2f}, memory ratio {h['memory_ratio_ritr_to_fixed']:.2f} "
+                     f"({h['memory_note']}; baseline {base / 2**20:.0f} MiB).")
+    return "\n".join(lines)
+
+
+def plots(result, prefix):
+    runs = [r for r in result["runs"] if "hausdorff_over_time" in r]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for r in runs:
+        t, d = zip(*r["hausdorff_over_time"]) if r["hausdorff_over_time"] else ([], [])
+        style = dict(color="tab:green", linewidth=2.5) if r["name"] == "ritr" else dict(linewidth=1)
+        ax.plot(t, d, label=f"{r['name']} ({r.get('n_vertices', '?')} v)", **style)
+    ax.set_xlabel("time")
+    ax.set_ylabel(f"Hausdorff distance to {result['reference']}")
+    ax.set_yscale("log")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(prefix + "_hausdorff.png", dpi=110)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, key, label in ((axes[0], "wall_seconds", "wall time [s]"), (axes[1], "n_vertices", "vertices")):
+        fixed = [r for r in runs if r["name"] != "ritr"]
+        ax.plot([r[key] for r in fixed], [r["mean_hausdorff"] for r in fixed], "o-", color="tab:orange",
+                label="fixed mesh")
+        for r in fixed:
+            ax.annotate(r["name"], (r[key], r["mean_hausdorff"]), fontsize=7)
+        for r in runs:
+            if r["name"] == "ritr":
+                ax.plot([r[key]], [r["mean_hausdorff"]], "*", color="tab:green", markersize=14, label="r-ITR")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(label)
+        ax.set_ylabel("mean Hausdorff distance")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(prefix + "_cost.png", dpi=110)
+    plt.close(fig)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    p.add_argument("result")
+    p.add_argument("--plots", help="directory for the PNGs (default: beside the JSON)")
+    args = p.parse_args()
+    with open(args.result) as f:
+        result = json.load(f)
+    name = os.path.splitext(os.path.basename(args.result))[0]
+    directory = args.plots or os.path.dirname(os.path.abspath(args.result))
+    os.makedirs(directory, exist_ok=True)
+    plots(result, os.path.join(directory, name))
+    print(table(result))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
