@@ -4,6 +4,8 @@
 #include <ritr/mesh/mesh_builder.h>
 #include <ritr/metrics/mesh_metrics.h>
 
+#include <test_meshes.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -100,12 +102,7 @@ TEST(ContactPressure, UniformLoadOnTheBottomOfARectangle)
 
 TEST(ContactPressure, RodEndsCarryTheForce)
 {
-  BodyDescription rod;
-  rod.shape        = "interval";
-  rod.lower        = {0};
-  rod.upper        = {1};
-  rod.subdivisions = {4};
-  const auto      mesh   = build_mesh<1>({rod});
+  const auto      mesh   = test_support::small_box_mesh<1>(4, 0.0);  // the rod [0, 1]
   Eigen::VectorXd forces = Eigen::VectorXd::Zero(mesh.n_nodes());
   for (unsigned int n = 0; n < mesh.n_nodes(); ++n)
     forces[n] = mesh.reference[n] == 0.0 ? 5.0 : 0.0;
