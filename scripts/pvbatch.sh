@@ -34,11 +34,12 @@ if [ -z "${DISPLAY:-}" ]; then
   export DISPLAY=":$(head -n 1 "$ready")"
 fi
 # Connecting to the X server fails now and then on some machines (pvbatch then aborts with
-# "bad X server connection", SIGABRT): such a run is tried again, a few times.
-for attempt in 1 2 3 4 5; do
+# "bad X server connection", SIGABRT; a bare XOpenDisplay fails too, so it is the server
+# under load): such a run is tried again, up to ten times.
+for attempt in $(seq 10); do
   status=0
   pvbatch "$@" || status=$?
   [ "$status" -ne 134 ] && exit "$status"
-  echo "pvbatch aborted (attempt $attempt of 5)" >&2
+  echo "pvbatch aborted (attempt $attempt of 10)" >&2
 done
 exit 134

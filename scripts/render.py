@@ -40,13 +40,16 @@ def parse_arguments():
 
 
 def time_steps(reader):
-    times = reader.TimestepValues
-    return list(times) if isinstance(times, (list, tuple)) or hasattr(times, "__len__") else [times]
+    times = reader.TimestepValues  # a number, not a list, when the run has one frame
+    return list(times) if hasattr(times, "__len__") else [times]
 
 
 def bounds_at(source, time):
     source.UpdatePipeline(time)
     return source.GetDataInformation().GetBounds()
+
+
+EMPTY_BOUNDS = [float("inf"), -float("inf")] * 3
 
 
 def union(a, b):
@@ -70,6 +73,7 @@ class Scene:
     """The pipeline: deformed mesh and obstacles on the left, reference mesh on the right."""
 
     def __init__(self, run_dir, field, size):
+        self.run_dir = run_dir
         self.solution = pv.PVDReader(FileName=os.path.join(run_dir, "solution.pvd"))
         self.times = time_steps(self.solution)
         self.view = pv.CreateRenderView()
@@ -80,10 +84,22 @@ class Scene:
             self.view.UseColorPaletteForBackground = 0
         except AttributeError:
             pass
+        self.show_deformed(field)
+        left = union(bounds_at(self.solution, self.times[0]), self.show_obstacles())
+        everything = union(left, self.show_reference_beside(left))
+        everything[0] -= 0.15 * (everything[1] - everything[0])  # room for the colour bar
+        self.show_labels()
+        pv.Render(self.view)  # the first render resets the camera: frame it afterwards
+        self.frame_camera(everything)
 
-        deformed = pv.Show(self.solution, self.view)
-        deformed.SetRepresentationType("Surface With Edges")
-        deformed.EdgeColor = [0.25, 0.25, 0.25]
+    def show_mesh(self, source, edge_colour):
+        shown = pv.Show(source, self.view)
+        shown.SetRepresentationType("Surface With Edges")
+        shown.EdgeColor = edge_colour
+        return shown
+
+    def show_deformed(self, field):
+        deformed = self.show_mesh(self.solution, [0.25, 0.25, 0.25])
         pv.ColorBy(deformed, (FIELDS[field], field))
         colours = pv.GetColorTransferFunction(field)
         colours.ApplyPreset("Viridis (matplotlib)", True)
@@ -97,44 +113,41 @@ class Scene:
         bar.Position = [0.02, 0.1]
         deformed.SetScalarBarVisibility(self.view, True)
 
-        left = bounds_at(self.solution, self.times[0])
-        obstacles_file = os.path.join(run_dir, "obstacles.pvd")
-        if os.path.exists(obstacles_file):
-            obstacle_reader = pv.PVDReader(FileName=obstacles_file)
-            left = union(left, bounds_at(obstacle_reader, self.times[0]))
-            obstacles = pv.Show(obstacle_reader, self.view)
-            obstacles.SetRepresentationType("Surface")
-            obstacles.ColorArrayName = ["POINTS", ""]
-            obstacles.AmbientColor = obstacles.DiffuseColor = [0.35, 0.35, 0.35]
-            obstacles.LineWidth = 2.0
+    def show_obstacles(self):
+        """Shows obstacles.pvd, if the run has obstacles; returns their bounds at the start."""
+        path = os.path.join(self.run_dir, "obstacles.pvd")
+        if not os.path.exists(path):
+            return EMPTY_BOUNDS
+        reader = pv.PVDReader(FileName=path)
+        shown = pv.Show(reader, self.view)
+        shown.SetRepresentationType("Surface")
+        shown.ColorArrayName = ["POINTS", ""]
+        shown.AmbientColor = shown.DiffuseColor = [0.35, 0.35, 0.35]
+        shown.LineWidth = 2.0
+        return bounds_at(reader, self.times[0])
 
-        # The reference mesh sits to the right of everything on the left, at every time.
-        reference = pv.PVDReader(FileName=os.path.join(run_dir, "reference.pvd"))
-        width = left[1] - left[0]
+    def show_reference_beside(self, left):
+        """Shows the reference mesh to the right of the bounds `left`; returns its bounds."""
+        reference = pv.PVDReader(FileName=os.path.join(self.run_dir, "reference.pvd"))
         start = bounds_at(reference, self.times[0])
-        shift = left[1] - start[0] + 0.05 * width
+        shift = left[1] - start[0] + 0.05 * (left[1] - left[0])
         moved = pv.Transform(Input=reference)
         moved.Transform.Translate = [shift, 0, 0]
-        everything = union(left, [b + (shift if i < 2 else 0) for i, b in enumerate(start)])
-        everything[0] -= 0.15 * (everything[1] - everything[0])  # room for the colour bar
-        beside = pv.Show(moved, self.view)
-        beside.SetRepresentationType("Surface With Edges")
-        beside.ColorArrayName = ["POINTS", ""]
-        beside.AmbientColor = beside.DiffuseColor = [0.93, 0.93, 0.93]
-        beside.EdgeColor = [0.3, 0.3, 0.3]
+        shown = self.show_mesh(moved, [0.3, 0.3, 0.3])
+        shown.ColorArrayName = ["POINTS", ""]
+        shown.AmbientColor = shown.DiffuseColor = [0.93, 0.93, 0.93]
+        return [b + (shift if i < 2 else 0) for i, b in enumerate(start)]
 
+    def show_labels(self):
         self.clock = pv.Text()
-        label = pv.Show(self.clock, self.view)
-        label.Color = [0, 0, 0]
-        label.WindowLocation = "Upper Left Corner"
-        caption = pv.Text(Text="left: deformed mesh and obstacles   right: reference mesh")
-        shown = pv.Show(caption, self.view)
+        shown = pv.Show(self.clock, self.view)
         shown.Color = [0, 0, 0]
-        shown.FontSize = 14
-        shown.WindowLocation = "Lower Right Corner"
-
-        pv.Render(self.view)  # the first render resets the camera: frame it afterwards
-        self.frame_camera(everything)
+        shown.WindowLocation = "Upper Left Corner"
+        caption = pv.Show(pv.Text(Text="left: deformed mesh and obstacles   right: reference mesh"),
+                          self.view)
+        caption.Color = [0, 0, 0]
+        caption.FontSize = 14
+        caption.WindowLocation = "Lower Right Corner"
 
     def frame_camera(self, bounds):
         centre = [(bounds[2 * i] + bounds[2 * i + 1]) / 2 for i in range(3)]
