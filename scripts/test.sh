@@ -3,6 +3,6 @@
 # Usage: scripts/test.sh [extra ctest arguments]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/scripts/setup.sh"
+"$root/scripts/setup.sh" --with-paraview
 cd "$root/build"
 ctest --output-on-failure -LE benchmark -j "$(nproc)" "$@"

@@ -1,5 +1,7 @@
 #include <ritr/metrics/mesh_metrics.h>
 
+#include <Eigen/Geometry>
+
 #include <sys/resource.h>
 
 #include <cmath>
@@ -65,6 +67,56 @@ namespace ritr
     return j;
   }
 
+  namespace
+  {
+    // Measure times outward unit normal of a boundary facet (oriented outward) at positions x.
+    template <int dim>
+    Vec<dim> facet_area_vector(const typename SimplexMesh<dim>::Facet &facet, const Eigen::VectorXd &x)
+    {
+      const auto node = [&](const int a) -> Vec<dim> { return x.segment<dim>(facet[a] * dim); };
+      if constexpr (dim == 2)
+        {
+          const Vec<2> t = node(1) - node(0);
+          return Vec<2>(t[1], -t[0]);  // the boundary runs counter-clockwise
+        }
+      else
+        return 0.5 * (node(1) - node(0)).cross(node(2) - node(0));
+    }
+  } // namespace
+
+  template <int dim>
+  Eigen::VectorXd nodal_contact_pressures(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
+                                          const Eigen::VectorXd &contact_forces)
+  {
+    Eigen::VectorXd pressure = Eigen::VectorXd::Zero(mesh.n_nodes());
+    if constexpr (dim == 1)
+      {
+        for (const auto &facet : mesh.boundary_facets)
+          pressure[facet[0]] = std::abs(contact_forces[facet[0]]);
+      }
+    else
+      {
+        Eigen::VectorXd measure = Eigen::VectorXd::Zero(mesh.n_nodes());
+        Eigen::VectorXd area_vector = Eigen::VectorXd::Zero(x.size());
+        for (const auto &facet : mesh.boundary_facets)
+          {
+            const Vec<dim> a = facet_area_vector<dim>(facet, x);
+            for (const unsigned int n : facet)
+              {
+                measure[n] += a.norm() / dim;
+                area_vector.segment<dim>(n * dim) += a;
+              }
+          }
+        for (unsigned int n = 0; n < mesh.n_nodes(); ++n)
+          if (measure[n] > 0)
+            {
+              const Vec<dim> normal = area_vector.segment<dim>(n * dim).normalized();
+              pressure[n] = -normal.dot(contact_forces.segment<dim>(n * dim)) / measure[n];
+            }
+      }
+    return pressure;
+  }
+
   long peak_rss_bytes()
   {
     rusage usage{};
@@ -93,6 +145,12 @@ namespace ritr
   template std::vector<double> cell_qualities<1>(const SimplexMesh<1> &, const Eigen::VectorXd &);
   template std::vector<double> cell_qualities<2>(const SimplexMesh<2> &, const Eigen::VectorXd &);
   template std::vector<double> cell_qualities<3>(const SimplexMesh<3> &, const Eigen::VectorXd &);
+  template Eigen::VectorXd nodal_contact_pressures<1>(const SimplexMesh<1> &, const Eigen::VectorXd &,
+                                                      const Eigen::VectorXd &);
+  template Eigen::VectorXd nodal_contact_pressures<2>(const SimplexMesh<2> &, const Eigen::VectorXd &,
+                                                      const Eigen::VectorXd &);
+  template Eigen::VectorXd nodal_contact_pressures<3>(const SimplexMesh<3> &, const Eigen::VectorXd &,
+                                                      const Eigen::VectorXd &);
   template double min_deformed_jacobian<1>(const SimplexMesh<1> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
   template double min_deformed_jacobian<2>(const SimplexMesh<2> &, const Eigen::VectorXd &, const Eigen::VectorXd &);
   template double min_deformed_jacobian<3>(const SimplexMesh<3> &, const Eigen::VectorXd &, const Eigen::VectorXd &);

@@ -1,7 +1,21 @@
+// The VTU pieces go through VTK's own XML writer (binary, zlib-compressed, appended data).
+// This is the only translation unit that includes VTK headers: the rest of the simulator
+// sees Eigen types only (vtk_files.h).
 #include <ritr/common/atomic_file.h>
 #include <ritr/output/vtk_files.h>
 
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <algorithm>
 #include <iomanip>
+#include <stdexcept>
 
 namespace ritr
 {
@@ -11,23 +25,45 @@ namespace ritr
     {
       switch (n_nodes)
         {
-          case 1: return 1;   // VTK_VERTEX
-          case 2: return 3;   // VTK_LINE
-          case 3: return 5;   // VTK_TRIANGLE
-          default: return 10; // VTK_TETRA
+          case 1: return VTK_VERTEX;
+          case 2: return VTK_LINE;
+          case 3: return VTK_TRIANGLE;
+          default: return VTK_TETRA;
         }
     }
 
-    void write_fields(std::ostream &out, const std::vector<VtuField> &fields)
+    vtkNew<vtkDoubleArray> vtk_array(const VtuField &field)
     {
-      for (const auto &f : fields)
+      vtkNew<vtkDoubleArray> array;
+      array->SetName(field.name.c_str());
+      array->SetNumberOfComponents(static_cast<int>(field.components));
+      array->SetNumberOfTuples(field.values.size() / field.components);
+      std::copy(field.values.data(), field.values.data() + field.values.size(), array->GetPointer(0));
+      return array;
+    }
+
+    vtkNew<vtkUnstructuredGrid> vtk_grid(const VtuPiece &piece)
+    {
+      vtkNew<vtkPoints> points;
+      points->SetDataTypeToDouble();
+      points->SetNumberOfPoints(piece.points.rows());
+      for (Eigen::Index i = 0; i < piece.points.rows(); ++i)
+        points->SetPoint(i, piece.points(i, 0), piece.points(i, 1), piece.points(i, 2));
+
+      vtkNew<vtkUnstructuredGrid> grid;
+      grid->SetPoints(points);
+      grid->Allocate(static_cast<vtkIdType>(piece.cells.size()));
+      std::vector<vtkIdType> ids;
+      for (const auto &cell : piece.cells)
         {
-          out << "<DataArray type=\"Float64\" Name=\"" << f.name << "\" NumberOfComponents=\""
-              << f.components << "\" format=\"ascii\">\n";
-          for (Eigen::Index i = 0; i < f.values.size(); ++i)
-            out << f.values[i] << ((i + 1) % f.components == 0 ? '\n' : ' ');
-          out << "</DataArray>\n";
+          ids.assign(cell.begin(), cell.end());
+          grid->InsertNextCell(vtk_cell_type(cell.size()), static_cast<vtkIdType>(ids.size()), ids.data());
         }
+      for (const auto &field : piece.point_data)
+        grid->GetPointData()->AddArray(vtk_array(field));
+      for (const auto &field : piece.cell_data)
+        grid->GetCellData()->AddArray(vtk_array(field));
+      return grid;
     }
   } // namespace
 
@@ -43,35 +79,22 @@ namespace ritr
 
   void write_vtu(const std::string &path, const VtuPiece &piece)
   {
-    write_file_atomically(path, [&](std::ostream &out) {
-      out << "<?xml version=\"1.0\"?>\n"
-          << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-          << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << piece.points.rows()
-          << "\" NumberOfCells=\"" << piece.cells.size() << "\">\n";
-      out << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-      for (Eigen::Index i = 0; i < piece.points.rows(); ++i)
-        out << piece.points(i, 0) << ' ' << piece.points(i, 1) << ' ' << piece.points(i, 2) << '\n';
-      out << "</DataArray>\n</Points>\n<Cells>\n"
-          << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-      for (const auto &c : piece.cells)
-        {
-          for (const auto v : c)
-            out << v << ' ';
-          out << '\n';
-        }
-      out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-      std::size_t offset = 0;
-      for (const auto &c : piece.cells)
-        out << (offset += c.size()) << '\n';
-      out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-      for (const auto &c : piece.cells)
-        out << vtk_cell_type(c.size()) << '\n';
-      out << "</DataArray>\n</Cells>\n<PointData>\n";
-      write_fields(out, piece.point_data);
-      out << "</PointData>\n<CellData>\n";
-      write_fields(out, piece.cell_data);
-      out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-    });
+    const auto grid = vtk_grid(piece);
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetInputData(grid);
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();  // raw bytes: base64 would make the files a third larger
+    writer->SetCompressorTypeToZLib();
+    // Level 1 writes a 100K-vertex frame twice as fast as VTK's default 5, for 2% more bytes
+    // (doc/benchmarks.md).
+    writer->SetCompressionLevel(1);
+    // VTK writes into memory and write_file_atomically puts the bytes in place, so that a
+    // killed run never leaves a torn file.
+    writer->WriteToOutputStringOn();
+    if (writer->Write() != 1)
+      throw std::runtime_error("VTK could not write '" + path + "'");
+    const std::string bytes = writer->GetOutputString();
+    write_file_atomically(path, [&](std::ostream &out) { out << bytes; });
   }
 
   void PvdCollection::add(const double time, const std::string &file)

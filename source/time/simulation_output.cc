@@ -2,6 +2,7 @@
 // summary.json, and the run's ownership of its output directory.
 #include <ritr/common/atomic_file.h>
 #include <ritr/common/wall_clock.h>
+#include <ritr/elasticity/stress.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/output/vtk_files.h>
@@ -47,23 +48,32 @@ namespace ritr
   {
     RunOutputs &out = *outputs_;
     const auto dir = out.directory;
+    // Writes STEM-NNNNN.vtu and lists it in its collection; the time goes to output_seconds.
+    const auto write_piece = [&](const std::string &stem, const VtuPiece &p, PvdCollection &collection) {
+      ScopedTimer       timer(out.output_seconds);
+      const std::string file = numbered(stem, step, ".vtu");
+      write_vtu((dir / file).string(), p);
+      collection.add(time_, file);
+    };
 
     VtuPiece piece;
     for (const auto &cell : mesh_.cells)
       piece.cells.emplace_back(cell.begin(), cell.end());
-    const auto field = [&](const std::string &name, const Eigen::VectorXd &v) {
+    const auto vector_field = [&](const std::string &name, const Eigen::VectorXd &v) {
       return VtuField{name, 3, pad_to_3d(v, dim)};
     };
-    piece.point_data = {field("displacement", x_ - u_), field("velocity", v_),
-                        field("reference_position", u_), field("contact_force", contact_forces())};
-    const auto strains = cell_strains(mesh_, x_, u_);
-    const auto quality = cell_qualities(mesh_, u_);
-    VtuField   strain{"strain", 1, Eigen::Map<const Eigen::VectorXd>(strains.data(), strains.size())};
-    VtuField   material{"material_id", 1, Eigen::VectorXd(mesh_.n_cells())};
-    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
-      material.values[c] = mesh_.cell_material[c];
-    VtuField element_quality{"element_quality", 1, Eigen::Map<const Eigen::VectorXd>(quality.data(), quality.size())};
-    piece.cell_data = {strain, material, element_quality};
+    const auto scalar_field = [](const std::string &name, const std::vector<double> &v) {
+      return VtuField{name, 1, Eigen::Map<const Eigen::VectorXd>(v.data(), v.size())};
+    };
+    const Eigen::VectorXd forces = contact_forces();
+    piece.point_data = {vector_field("displacement", x_ - u_), vector_field("velocity", v_),
+                        vector_field("reference_position", u_), vector_field("contact_force", forces),
+                        VtuField{"contact_pressure", 1, nodal_contact_pressures(mesh_, x_, forces)}};
+    const std::vector<double> material_ids(mesh_.cell_material.begin(), mesh_.cell_material.end());
+    piece.cell_data = {scalar_field("strain", cell_strains(mesh_, x_, u_)),
+                       scalar_field("von_mises_stress", cell_von_mises_stresses(*bulk_, x_, u_)),
+                       scalar_field("material_id", material_ids),
+                       scalar_field("element_quality", cell_qualities(mesh_, u_))};
 
     const auto as_points = [&](const Eigen::VectorXd &p) {
       const Eigen::VectorXd padded = pad_to_3d(p, dim);
@@ -71,11 +81,9 @@ namespace ritr
         padded.data(), padded.size() / 3, 3));
     };
     piece.points = as_points(x_);
-    write_vtu((dir / numbered("solution", step, ".vtu")).string(), piece);
-    out.solution.add(time_, numbered("solution", step, ".vtu"));
+    write_piece("solution", piece, out.solution);
     piece.points = as_points(u_);
-    write_vtu((dir / numbered("reference", step, ".vtu")).string(), piece);
-    out.reference.add(time_, numbered("reference", step, ".vtu"));
+    write_piece("reference", piece, out.reference);
 
     if (!obstacles_.empty())
       {
@@ -92,8 +100,7 @@ namespace ritr
               obstacle_piece.cells.push_back({offset + f[0], offset + f[1], offset + f[2]});
             offset += o.rest_vertices.size();
           }
-        write_vtu((dir / numbered("obstacles", step, ".vtu")).string(), obstacle_piece);
-        out.obstacles.add(time_, numbered("obstacles", step, ".vtu"));
+        write_piece("obstacles", obstacle_piece, out.obstacles);
       }
 
     if (scene_.write_nodal_csv)
@@ -155,6 +162,7 @@ namespace ritr
         << "  \"inner_solve_seconds\": " << inner_seconds << ",\n"
         << "  \"transfer_seconds\": " << transfer_seconds << ",\n"
         << "  \"outer_solve_seconds\": " << outer_seconds << ",\n"
+        << "  \"output_seconds\": " << outputs_->output_seconds << ",\n"
         << "  \"max_sliding_violation\": " << max_sliding << ",\n"
         << "  \"invariant_violations\": [";
       for (std::size_t i = 0; i < invariant_violations_.size(); ++i)

@@ -1,6 +1,6 @@
 // ritr-compare: boundary extraction, Hausdorff distances against hand-computed values, centroids,
-// the readers (ASCII as ritr writes today, compressed binary as VTK writes) and the whole tool on
-// two tiny runs written here.
+// the readers (ASCII as ritr wrote before its VTK writer, compressed binary as ritr writes now)
+// and the whole tool on two tiny runs written here.
 #include <ritr/common/input_error.h>
 #include <ritr/compare/boundary.h>
 #include <ritr/compare/energy_log.h>
@@ -146,7 +146,7 @@ TEST(CompareCentroid, IsAreaWeighted)
 
 namespace
 {
-  // A 2D mesh in the ASCII VTU layout of source/output/vtk_files.cc.
+  // A 2D mesh in the ASCII VTU layout of ritr's former hand-made writer (older runs).
   void write_ascii_vtu(const fs::path &file, const DeformedMesh &mesh)
   {
     std::ofstream out(file);

@@ -27,6 +27,15 @@ namespace ritr
   template <int dim>
   double bounding_box_diagonal(const Eigen::VectorXd &p);
 
+  // Contact pressure at every node of the deformed mesh x (0 off the boundary): the normal
+  // component of the nodal contact force (positive when it pushes into the body) divided by
+  // the node's share of the deformed boundary measure, 1/dim of each facet around it. The
+  // normal is the measure-weighted mean of those facets' outward normals. 1D rods have a unit
+  // cross-section and a force along the rod: the pressure is |f|.
+  template <int dim>
+  Eigen::VectorXd nodal_contact_pressures(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &x,
+                                          const Eigen::VectorXd &contact_forces);
+
   // Peak resident set size of this process in bytes.
   long peak_rss_bytes();
 } // namespace ritr

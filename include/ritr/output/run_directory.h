@@ -32,6 +32,7 @@ namespace ritr
     PvdCollection         solution, reference, obstacles;
     std::ostringstream    log;
     std::ostringstream    newton_log;  // newton.csv, when the scene asks for it
+    double                output_seconds = 0;  // spent writing the per-step files
   };
 
   // Removes the previous run's outputs and stale temporaries except summary.json, which the

@@ -1,6 +1,8 @@
 #pragma once
-// ParaView output: unstructured-grid VTU pieces and the PVD collections that index them by
-// time. Every file is written atomically (temporary name, then rename).
+// ParaView output: unstructured-grid VTU pieces (VTK XML, binary and compressed, written by
+// the VTK library) and the PVD collections that index them by time. Every file is written
+// atomically (temporary name, then rename). Only Eigen types here: VTK's headers stay in
+// vtk_files.cc.
 #include <Eigen/Core>
 
 #include <string>
