@@ -94,6 +94,20 @@ def headline(runs, reference, baseline_rss):
             "memory_note": "peak RSS minus the start-up baseline of `ritr --help`"}
 
 
+def summary(result, work):
+    """One line comparing r-ITR with the fixed mesh of the same size, and where the runs are."""
+    ritr, fixed, reference = result["runs"][0], result["runs"][1], result["runs"][-1]
+    accuracy = (f"; mean Hausdorff distance to the fixed mesh of {reference.get('n_vertices', '?'):,} vertices: "
+                f"r-ITR {ritr['mean_hausdorff']:.2e}, fixed {fixed['mean_hausdorff']:.2e}"
+                if "mean_hausdorff" in ritr and "mean_hausdorff" in fixed else "")
+    line = (f"r-ITR on {ritr.get('n_vertices', '?'):,} vertices: energy {ritr.get('final_energy', float('nan')):.6g}, "
+            f"{ritr['wall_seconds']:.1f} s; fixed mesh of the same size: energy "
+            f"{fixed.get('final_energy', float('nan')):.6g}, {fixed['wall_seconds']:.1f} s{accuracy}")
+    where = (f"results: {os.path.join(work, 'ritr')} and {os.path.join(work, fixed['name'])} (open solution.pvd and "
+             f"reference.pvd in ParaView); pictures: scripts/render.py {os.path.join(work, 'ritr')}")
+    return line + "\n" + where
+
+
 def main():
     build = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build")
     p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
@@ -103,6 +117,8 @@ def main():
                    help="override for every run, e.g. 'Adaptivity/epsilon r=1e-6'")
     p.add_argument("--quick", action="store_true")
     p.add_argument("--out", help="result JSON (default: stdout)")
+    p.add_argument("--summary", action="store_true",
+                   help="print one line comparing r-ITR with the fixed mesh of its size instead of the JSON")
     p.add_argument("--work", help="directory for the runs (default: a temporary one)")
     p.add_argument("--ritr", default=os.path.join(build, "ritr"))
     p.add_argument("--compare", default=os.path.join(build, "ritr-compare"))
@@ -134,12 +150,14 @@ def main():
               "headline": headline(runs, reference, baseline_rss)}
     for run in runs:
         run.pop("directory")
+    if args.summary:
+        print(summary(result, os.path.relpath(work)))
     text = json.dumps(result, indent=1)
     if args.out:
         os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
         with open(args.out, "w") as f:
             f.write(text + "\n")
-    else:
+    elif not args.summary:
         print(text)
     bad = [r["name"] for r in runs if r["exit_code"] != 0 or r.get("invariant_violations")]
     if bad:
