@@ -48,7 +48,9 @@ def plots(result, prefix):
     runs = [r for r in result["runs"] if "hausdorff_over_time" in r]
     fig, ax = plt.subplots(figsize=(6, 4))
     for r in runs:
-        t, d = zip(*r["hausdorff_over_time"]) if r["hausdorff_over_time"] else ([], [])
+        # The first frame is the shared initial state (distance zero up to round-off).
+        frames = [(t, d) for t, d in r["hausdorff_over_time"] if t > 0]
+        t, d = zip(*frames) if frames else ([], [])
         style = dict(color="tab:green", linewidth=2.5) if r["name"] == "ritr" else dict(linewidth=1)
         ax.plot(t, d, label=f"{r['name']} ({r.get('n_vertices', '?')} v)", **style)
     ax.set_xlabel("time")
