@@ -4,6 +4,7 @@
 // every step judged on the energy lowers it once the prescribed motion is complete.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "run_ritr.h"
@@ -60,4 +61,28 @@ TEST(NewtonLog, FailedStepKeepsItsIterations)
       EXPECT_EQ(log.rows[i][log.column("step")], 1.0);
       EXPECT_EQ(log.rows[i][log.column("iteration")], double(i));
     }
+}
+
+// Solver/hessian projection = never: the exact Hessian (shifted where indefinite) reaches the
+// same states as projected Newton on the bar, in no more iterations, and logs its shifts.
+TEST(NewtonLog, ExactHessianReachesTheProjectedStates)
+{
+  const std::string projected_dir = "output/newton_log/projected", exact_dir = "output/newton_log/exact";
+  const RunResult   projected     = run_ritr(scene_variant("bar_impact_fine_2d", "projected", projected_dir, log_on));
+  const RunResult   exact         = run_ritr(scene_variant(
+    "bar_impact_fine_2d", "exact", exact_dir,
+    "subsection Solver\n  set newton log = true\n  set hessian projection = never\nend\n"));
+  ASSERT_EQ(projected.exit_code, 0) << projected.output;
+  ASSERT_EQ(exact.exit_code, 0) << exact.output;
+  const CsvTable a = read_csv(projected_dir + "/log.csv"), b = read_csv(exact_dir + "/log.csv");
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  const auto energy = a.column("energy");
+  for (std::size_t s = 0; s < a.rows.size(); ++s)
+    EXPECT_NEAR(b.rows[s][energy], a.rows[s][energy], 1e-6 * std::abs(a.rows[s][energy])) << "step " << s + 1;
+  EXPECT_LE(summary_count(exact_dir, "total_newton_iterations"), summary_count(projected_dir, "total_newton_iterations"));
+  const CsvTable log   = read_csv(exact_dir + "/newton.csv");
+  const auto     shift = log.column("hessian_shift");
+  ASSERT_LT(shift, log.header.size());
+  for (const auto &row : log.rows)
+    EXPECT_GE(row[shift], 0.0);
 }
