@@ -78,8 +78,11 @@ def compare(args, run, reference):
 
 def headline(runs, reference, baseline_rss):
     ritr = runs[0]
-    candidates = [r for r in runs[1:] if r is not reference and "mean_hausdorff" in r]
-    if "mean_hausdorff" not in ritr:
+    # A rung that stopped early is compared on its frames only: no fair accuracy or cost figure.
+    candidates = [r for r in runs[1:] if r is not reference and "mean_hausdorff" in r and r["exit_code"] == 0]
+    if reference["exit_code"] != 0:
+        return {"matching_fixed": None, "why": f"the reference rung did not finish (exit {reference['exit_code']})"}
+    if "mean_hausdorff" not in ritr or ritr["exit_code"] != 0:
         return {"matching_fixed": None, "why": "r-ITR has no accuracy figure (failed run or comparison)"}
     matching = next((r for r in candidates if r["mean_hausdorff"] <= ritr["mean_hausdorff"]), None)
     if matching is None:

@@ -35,7 +35,9 @@ def table(result):
                      f"| {r.get('total_outer_iterations', '-')} | {r.get('final_energy', float('nan')):.6g} "
                      f"| {accuracy} | {r['exit_code']} |")
     h = result["headline"]
-    if h.get("matching_fixed"):
+    if not h.get("matching_fixed"):
+        lines += ["", f"No headline: {h['why']}."]
+    else:
         lines.append("")
         lines.append(f"Headline: r-ITR matches `{h['matching_fixed']}` ({h['why']}): "
                      f"{h['vertex_ratio']:.1f}x its vertices, time ratio r-ITR/fixed "
