@@ -119,6 +119,20 @@ namespace ritr
       prm.leave_subsection();
     }
 
+    // Calls read(name) inside every enabled numbered subsection "KIND i", i < count.
+    template <typename Read>
+    void for_each_enabled(ParameterHandler &prm, const std::string &kind, const unsigned int count, Read read)
+    {
+      for (unsigned int i = 0; i < count; ++i)
+        {
+          const std::string name = kind + " " + std::to_string(i);
+          prm.enter_subsection(name);
+          if (prm.get_bool("enabled"))
+            read(name);
+          prm.leave_subsection();
+        }
+    }
+
     // The pattern has checked each item; strtod, unlike stod, does not throw on underflow.
     std::vector<double> get_doubles(ParameterHandler &prm, const std::string &name)
     {
@@ -219,41 +233,34 @@ namespace ritr
       if (const std::string problem = output_directory_problem(s.output_directory); !problem.empty())
         fail("output directory", "'" + shortened(s.output_directory) + "' " + problem);
 
-      for (unsigned int b = 0; b < max_bodies; ++b)
-        {
-          const std::string name = "Body " + std::to_string(b);
-          prm.enter_subsection(name);
-          if (prm.get_bool("enabled"))
-            {
-              BodyScene body;
-              body.section        = name;
-              auto     &g         = body.geometry;
-              g.shape             = prm.get("shape");
-              g.file              = resolve(prm.get("file"), file);
-              g.lower             = get_numbers(prm, s, name, "lower", dim);
-              g.upper             = get_numbers(prm, s, name, "upper", dim);
-              g.subdivisions      = to_unsigned(get_numbers(prm, s, name, "subdivisions", dim));
-              g.center            = get_numbers(prm, s, name, "center", dim);
-              g.radius            = prm.get_double("radius");
-              g.shape_refinements = prm.get_integer("shape refinements");
-              g.refinements       = prm.get_integer("refinements");
-              g.translation       = get_numbers(prm, s, name, "translation", dim);
-              g.material_id       = prm.get_integer("material id");
-              body.initial_velocity = vector_expression(prm, "initial velocity", dim);
-              if (g.shape == "file" && g.file.empty())
-                fail(name + "/file", "shape = file needs a mesh file");
-              if (g.shape == "file" && !std::ifstream(g.file))
-                fail(name + "/file", "cannot open mesh file '" + shortened(g.file) + "'");
-              if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
-                for (int k = 0; k < dim; ++k)
-                  if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
-                      !(g.upper[k] > g.lower[k]))
-                    fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
-              check_expression(dim, body.initial_velocity, dim, s.where(name + "/initial velocity"));
-              s.bodies.push_back(body);
-            }
-          prm.leave_subsection();
-        }
+      for_each_enabled(prm, "Body", max_bodies, [&](const std::string &name) {
+        BodyScene body;
+        body.section        = name;
+        auto     &g         = body.geometry;
+        g.shape             = prm.get("shape");
+        g.file              = resolve(prm.get("file"), file);
+        g.lower             = get_numbers(prm, s, name, "lower", dim);
+        g.upper             = get_numbers(prm, s, name, "upper", dim);
+        g.subdivisions      = to_unsigned(get_numbers(prm, s, name, "subdivisions", dim));
+        g.center            = get_numbers(prm, s, name, "center", dim);
+        g.radius            = prm.get_double("radius");
+        g.shape_refinements = prm.get_integer("shape refinements");
+        g.refinements       = prm.get_integer("refinements");
+        g.translation       = get_numbers(prm, s, name, "translation", dim);
+        g.material_id       = prm.get_integer("material id");
+        body.initial_velocity = vector_expression(prm, "initial velocity", dim);
+        if (g.shape == "file" && g.file.empty())
+          fail(name + "/file", "shape = file needs a mesh file");
+        if (g.shape == "file" && !std::ifstream(g.file))
+          fail(name + "/file", "cannot open mesh file '" + shortened(g.file) + "'");
+        if (g.shape != "file" && g.shape != "disk" && g.shape != "ball")
+          for (int k = 0; k < dim; ++k)
+            if (k >= static_cast<int>(g.lower.size()) || k >= static_cast<int>(g.upper.size()) ||
+                !(g.upper[k] > g.lower[k]))
+              fail(name + "/upper", "must exceed 'lower' in each of the " + std::to_string(dim) + " directions");
+        check_expression(dim, body.initial_velocity, dim, s.where(name + "/initial velocity"));
+        s.bodies.push_back(body);
+      });
       if (s.bodies.empty())
         fail("Body 0/enabled", "the scene has no body");
 
@@ -278,26 +285,19 @@ namespace ritr
       check_expression(dim, s.load_factor, 1, s.where("Gravity/load factor"));
       prm.leave_subsection();
 
-      for (unsigned int d = 0; d < max_dirichlet; ++d)
-        {
-          const std::string name = "Dirichlet " + std::to_string(d);
-          prm.enter_subsection(name);
-          if (prm.get_bool("enabled"))
-            {
-              DirichletScene bc;
-              bc.section      = name;
-              bc.boundary_ids = to_unsigned(get_doubles(prm, "boundary ids"));
-              bc.region       = prm.get("region");
-              bc.displacement = vector_expression(prm, "displacement", dim);
-              if (bc.boundary_ids.empty() == bc.region.empty())
-                fail(name, "give exactly one of 'boundary ids' and 'region'");
-              if (!bc.region.empty())
-                check_expression(dim, bc.region, 1, s.where(name + "/region"));
-              check_expression(dim, bc.displacement, dim, s.where(name + "/displacement"));
-              s.dirichlet.push_back(bc);
-            }
-          prm.leave_subsection();
-        }
+      for_each_enabled(prm, "Dirichlet", max_dirichlet, [&](const std::string &name) {
+        DirichletScene bc;
+        bc.section      = name;
+        bc.boundary_ids = to_unsigned(get_doubles(prm, "boundary ids"));
+        bc.region       = prm.get("region");
+        bc.displacement = vector_expression(prm, "displacement", dim);
+        if (bc.boundary_ids.empty() == bc.region.empty())
+          fail(name, "give exactly one of 'boundary ids' and 'region'");
+        if (!bc.region.empty())
+          check_expression(dim, bc.region, 1, s.where(name + "/region"));
+        check_expression(dim, bc.displacement, dim, s.where(name + "/displacement"));
+        s.dirichlet.push_back(bc);
+      });
 
       for (unsigned int o = 0; o < max_obstacles; ++o)
         {
