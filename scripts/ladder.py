@@ -33,8 +33,7 @@ def measure(command, log_path):
     with open(log_path, "w") as log:
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
         _, status, usage = os.wait4(process.pid, 0)
-    process.returncode = os.waitstatus_to_exitcode(status)
-    return process.returncode, time.monotonic() - start, usage.ru_maxrss * 1024
+    return os.waitstatus_to_exitcode(status), time.monotonic() - start, usage.ru_maxrss * 1024
 
 
 def body_sections(text):
