@@ -163,15 +163,15 @@ namespace ritr
   }
 
   template <int dim>
-  typename RitrSolver<dim>::Result RitrSolver<dim>::step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t,
-                                                         const Eigen::VectorXd &v_t, const Eigen::VectorXd &targets,
-                                                         const double h, const bool dynamic,
-                                                         const std::array<double, dim> &gravity)
+  typename RitrSolver<dim>::Result RitrSolver<dim>::step(const StepContext<dim> &step)
   {
+    const Eigen::VectorXd &u_t = step.u_start, &z_t = step.z_start, &targets = step.targets;
+    const double           h = step.time_step;
+    const bool             dynamic = step.dynamic;
     const Eigen::Index    n_u = u_t.size();
     const Eigen::VectorXd x_t = z_t.head(n_u);
     const double          transfer_before = objective_.transfer_seconds();
-    objective_.begin_step(u_t, x_t, v_t.head(n_u), h, dynamic, gravity);
+    objective_.begin_step(step);
 
     Result r;
     r.u = u_t;
@@ -182,7 +182,7 @@ namespace ritr
       ScopedTimer timer(r.inner_seconds);
       objective_.set_candidate(u_t);
       inner_.set_linear_term(objective_.linear_term());
-      r.inner_iterations += inner_.solve_start_of_step(u_t, r.z, z_t, targets).iterations;
+      r.inner_iterations += inner_.solve_start_of_step(step, r.z).iterations;
     }
     // The measure barrier's stiffness matches the contact barrier's (paper 5.3.2); without
     // contact it is the elastic stiffness per unit measure at the threshold w_hat.

@@ -343,22 +343,27 @@ namespace ritr
     const double t1      = step_ + 1 == scene_.n_steps() ? scene_.end_time : time_ + h;
     const bool   dynamic = scene_.dynamic();
 
-    CellEnergyWeights<dim> w;
-    w.inertia         = dynamic ? 1.0 : 0.0;
-    w.potential       = dynamic ? h * h : 1.0;
+    StepContext<dim> context;
+    context.step      = step_ + 1;
+    context.time      = t1;
+    context.time_step = h;
+    context.dynamic   = dynamic;
     const double load = load_factor_->value(Vec<dim>::Zero(), t1);
     for (int k = 0; k < dim; ++k)
-      w.gravity[k] = scene_.gravity[k] * load;
-    bulk_->set_weights(w);
-    bulk_->set_predictor(x_ + h * v_);
+      context.gravity[k] = scene_.gravity[k] * load;
+    context.u_start = u_;
+    context.z_start = state();
+    context.v_start = v_;
+    context.targets = state_targets(t1);
+    bulk_->set_weights(context.cell_weights());
+    bulk_->set_predictor(context.predictor());
 
     StepReport report;
     report.step = step_ + 1;
     report.time = t1;
-    const Eigen::VectorXd targets = state_targets(t1);
     if (ritr_)
       {
-        advance_adaptive(report, w.gravity, targets);
+        advance_adaptive(report, context);
         report.wall_seconds = seconds_since(start);
         history_.push_back(report);
         return report;
@@ -367,7 +372,7 @@ namespace ritr
     Eigen::VectorXd z = state();
     try
       {
-        const auto r = implicit_step_->solve_start_of_step(u_, z, state(), targets);
+        const auto r = implicit_step_->solve_start_of_step(context, z);
         report.newton_iterations  = r.iterations;
         report.line_search_trials = r.line_search_trials;
         report.energy             = r.energy;
@@ -391,13 +396,12 @@ namespace ritr
   }
 
   template <int dim>
-  void Simulation<dim>::advance_adaptive(StepReport &report, const std::array<double, dim> &gravity,
-                                         const Eigen::VectorXd &targets)
+  void Simulation<dim>::advance_adaptive(StepReport &report, const StepContext<dim> &context)
   {
     typename RitrSolver<dim>::Result r;
     try
       {
-        r = ritr_->step(u_, state(), v_, targets, scene_.time_step, scene_.dynamic(), gravity);
+        r = ritr_->step(context);
       }
     catch (const ConvergenceError &e)
       {
@@ -430,10 +434,7 @@ namespace ritr
   void Simulation<dim>::check_invariants(StepReport &report)
   {
     if (contact_)
-      {
-        contact_->forget_candidates();
-        report.min_distance = contact_->minimum_distance(state());
-      }
+      report.min_distance = contact_->minimum_distance(state());
     report.min_reference_measure = min_cell_measure(mesh_, u_, false);
     report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x_, u_);
     const std::string step = "step " + std::to_string(step_) + ": ";
@@ -453,8 +454,8 @@ namespace ritr
     if (!contact_)
       return f;
     Eigen::VectorXd g = Eigen::VectorXd::Zero(x_.size() + obstacle_positions_.size());
-    contact_->forget_candidates();
-    contact_->add_gradient(state(), g);
+    const Eigen::VectorXd z = state();
+    contact_->add_gradient(z, contact_->candidates_at(z), g);
     const double weight = scene_.dynamic() ? scene_.time_step * scene_.time_step : 1.0;
     return -g.head(x_.size()) / weight;
   }

@@ -178,7 +178,7 @@ namespace ritr
       << ',' << record.step_norm << ',' << record.gradient_norm << ',' << record.ccd_bound << ',' << record.alpha
       << ',' << record.prescribed_moving << ',' << record.judged_by_gradient << ','
       << (contact_ ? contact_->stiffness() : 0.0) << ','
-      << (contact_ ? contact_->active_minimum_distance(z) : std::numeric_limits<double>::infinity()) << '\n';
+      << (contact_ ? contact_->active_minimum_distance(z, contact_->candidates_at(z)) : std::numeric_limits<double>::infinity()) << '\n';
   }
 
   template <int dim>

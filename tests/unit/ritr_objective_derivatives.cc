@@ -38,7 +38,13 @@ namespace
     const Eigen::VectorXd u_t = mesh.reference;
     const Eigen::VectorXd x_t = test_support::deform(u_t, dim, 0.01, 3);
     const Eigen::VectorXd v_t = jitter(Eigen::VectorXd::Zero(u_t.size()), 2.0, 4);
-    objective.begin_step(u_t, x_t, v_t, 1e-2, true, gravity);
+    StepContext<dim> context;
+    context.time_step = 1e-2;
+    context.gravity   = gravity;
+    context.u_start   = u_t;
+    context.z_start   = x_t;
+    context.v_start   = v_t;
+    objective.begin_step(context);
 
     const Eigen::VectorXd u = jitter(u_t, 0.02, 5);
     const Eigen::VectorXd x = test_support::deform(u, dim, 0.01, 6);

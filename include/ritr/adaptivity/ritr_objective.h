@@ -14,6 +14,7 @@
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/contact/contact_potential.h>
 #include <ritr/elasticity/bulk_energy.h>
+#include <ritr/time/step_context.h>
 #include <ritr/transfer/transfer_operator.h>
 
 namespace ritr
@@ -41,8 +42,7 @@ namespace ritr
 
     // Start of a step: the start-of-step mesh u_t and the predictor x_t + h v_t on it. Sets
     // the bulk weights (dynamic: inertia 1, potential h^2; statics: 0 and 1).
-    void begin_step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t, const Eigen::VectorXd &v_t, double h,
-                    bool dynamic, const std::array<double, dim> &gravity);
+    void begin_step(const StepContext<dim> &step);
 
     // The candidate mesh u of the following evaluations (locates the transfer quadrature).
     void set_candidate(const Eigen::VectorXd &u);

@@ -70,11 +70,9 @@ namespace ritr
       double          inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
     };
 
-    // Advances (u_t, z_t, v_t) by one step of size h (dynamic: implicit Euler; static: one
-    // load step, v ignored). z_t = [x_t, obstacle vertices], `targets` the kinematic entries
-    // at the end of the step.
-    Result step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t, const Eigen::VectorXd &v_t,
-                const Eigen::VectorXd &targets, double h, bool dynamic, const std::array<double, dim> &gravity);
+    // Advances the step's start (u_t, z_t, v_t) by one step (dynamic: implicit Euler; static:
+    // one load step, v ignored).
+    Result step(const StepContext<dim> &step);
 
   private:
     // Newton over u with x = argmin E(., u) (physical admissibility).

@@ -70,8 +70,7 @@ namespace ritr
     void check_initial_state() const;
     double signed_cell_measure(unsigned int cell) const;  // at the reference positions
     Eigen::VectorXd state_targets(double t) const;  // kinematic entries at time t
-    void            advance_adaptive(StepReport &report, const std::array<double, dim> &gravity,
-                                     const Eigen::VectorXd &targets);
+    void            advance_adaptive(StepReport &report, const StepContext<dim> &context);
     // Fills the report's mesh invariants after a step and records any violation.
     void            check_invariants(StepReport &report);
     Eigen::VectorXd state() const;
