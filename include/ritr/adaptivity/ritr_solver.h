@@ -31,6 +31,14 @@ namespace ritr
     filtered
   };
 
+  // Why the outer iteration of a step stopped.
+  enum class OuterStop
+  {
+    converged,           // the Newton step fell below epsilon_r
+    line_search_failed,  // no trial along the direction kept R from increasing
+    iteration_limit      // max_outer_iterations reached
+  };
+
   struct RitrSettings
   {
     RitrHessian         hessian    = RitrHessian::truncated;
@@ -65,7 +73,7 @@ namespace ritr
       // R at (argmin E(., u_t), u_t): the step never ends above it.
       double          initial_objective = 0;
       double          sliding_violation = 0;
-      bool            converged         = false;  // |du| <= epsilon_r (else stopped by the iteration limit)
+      OuterStop       stop              = OuterStop::iteration_limit;
       unsigned int    outer_iterations = 0, inner_iterations = 0, line_search_trials = 0;
       double          inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
     };
@@ -79,6 +87,11 @@ namespace ritr
     void nested_solve(const Eigen::VectorXd &targets, Result &r);
     // Newton over (x, u) jointly (the ablation without physical admissibility).
     void joint_solve(const Eigen::VectorXd &targets, Result &r);
+    // The iteration both share: `direction()` sets the next Newton step and returns the first
+    // fraction of it to try (none: converged); `evaluate(alpha)` returns R at that fraction
+    // (+infinity: rejected); `accept(alpha)` takes the trial that did not raise R.
+    template <typename Direction, typename Evaluate, typename Accept>
+    void descend(Result &r, const Direction &direction, const Evaluate &evaluate, const Accept &accept) const;
     // x = argmin E(., u) warm-started from z; false if the inner solve failed.
     bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r);
     // The outer Hessian in basis coordinates (see basis_).
