@@ -138,7 +138,7 @@ namespace ritr
       s << "  \"scene\": " << json_string(scene_.parameter_file) << ",\n"
         << "  \"dimension\": " << dim << ",\n"
         << "  \"mode\": \"" << scene_.mode << "\",\n"
-        << "  \"adaptivity\": " << (ritr_ ? "true" : "false") << ",\n"
+        << "  \"adaptivity\": " << (scene_.adaptivity.enabled ? "true" : "false") << ",\n"
         << "  \"steps\": " << history_.size() << ",\n"
         << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
         << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
