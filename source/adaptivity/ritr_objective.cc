@@ -13,7 +13,7 @@ namespace ritr
 {
   template <int dim>
   RitrObjective<dim>::RitrObjective(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk,
-                                    ContactPotential<dim> *contact, const transfer::SimplexQuadrature<dim> &quadrature,
+                                    ContactPotential<dim> *contact, const SimplexQuadrature<dim> &quadrature,
                                     const InertiaForm inertia, const PredictorProjection projection)
     : mesh_(mesh)
     , bulk_(bulk)

@@ -38,7 +38,7 @@ namespace ritr
   template <int dim>
   RitrSolver<dim>::RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
                               ImplicitStep<dim> &inner, const RitrSettings &settings,
-                              const transfer::SimplexQuadrature<dim> &quadrature)
+                              const SimplexQuadrature<dim> &quadrature)
     : mesh_(mesh)
     , contact_(contact)
     , inner_(inner)

@@ -1,5 +1,5 @@
 #include <ritr/common/input_error.h>
-#include <ritr/mesh/obstacle_reader.h>
+#include <ritr/problem/obstacle_reader.h>
 #include <ritr/mesh/simplex_rules.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/problem/problem.h>

@@ -149,7 +149,7 @@ namespace ritr
     try
       {
         solver = std::make_unique<RitrSolver<dim>>(problem.mesh, *problem.bulk, contact, *implicit_step, settings,
-                                                   transfer::composite_rule(witherden_vincent_rule<dim>(5), subdivisions));
+                                                   composite_rule(witherden_vincent_rule<dim>(5), subdivisions));
       }
     catch (const std::invalid_argument &e)
       {

@@ -31,7 +31,7 @@ namespace
     const SimplexMesh<dim> mesh = test_support::small_box_mesh<dim>(3);
     const Material         material{MaterialModel::neo_hookean, 2e4, 0.3, 800};
     BulkEnergy<dim>        bulk(mesh, {material});
-    RitrObjective<dim>     objective(mesh, bulk, nullptr, transfer::composite_rule(transfer::degree_two_rule<dim>(), 3),
+    RitrObjective<dim>     objective(mesh, bulk, nullptr, composite_rule(degree_two_rule<dim>(), 3),
                                  inertia, projection);
     std::array<double, dim> gravity{};
     gravity[dim - 1] = -9.81;

@@ -107,7 +107,7 @@ namespace
   settings.hessian   = hessian;
   settings.max_outer_iterations = 1000;
   test_support::RitrSetup<1> setup(mesh, material, settings,
-                                   transfer::composite_rule(transfer::degree_two_rule<1>(), 4));
+                                   composite_rule(degree_two_rule<1>(), 4));
   Eigen::VectorXd v(mesh.n_nodes());
   for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
     v[i] = 1 - 2 * mesh.reference[i];

@@ -14,7 +14,7 @@
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/contact/contact_potential.h>
 #include <ritr/elasticity/bulk_energy.h>
-#include <ritr/time/step_context.h>
+#include <ritr/step/step_context.h>
 #include <ritr/transfer/transfer_operator.h>
 
 namespace ritr
@@ -37,7 +37,7 @@ namespace ritr
   public:
     // `bulk` carries the materials (one density) and is shared with the inner solve.
     RitrObjective(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
-                  const transfer::SimplexQuadrature<dim> &quadrature, InertiaForm inertia,
+                  const SimplexQuadrature<dim> &quadrature, InertiaForm inertia,
                   PredictorProjection projection);
 
     // Start of a step: the start-of-step mesh u_t and the predictor x_t + h v_t on it. Sets

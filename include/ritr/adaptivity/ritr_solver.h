@@ -13,7 +13,7 @@
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/adaptivity/ritr_objective.h>
 #include <ritr/solver/sparse_cholesky.h>
-#include <ritr/time/implicit_step.h>
+#include <ritr/step/implicit_step.h>
 
 namespace ritr
 {
@@ -64,7 +64,7 @@ namespace ritr
     // anchors, and w_hat = a tenth of the smallest initial cell measure).
     RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
                ImplicitStep<dim> &inner, const RitrSettings &settings,
-               const transfer::SimplexQuadrature<dim> &quadrature);
+               const SimplexQuadrature<dim> &quadrature);
 
     struct Result
     {

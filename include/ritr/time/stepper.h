@@ -5,8 +5,8 @@
 #include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/problem/problem.h>
 #include <ritr/solver/newton.h>
-#include <ritr/time/implicit_step.h>
-#include <ritr/time/step_context.h>
+#include <ritr/step/implicit_step.h>
+#include <ritr/step/step_context.h>
 
 #include <limits>
 #include <memory>

@@ -1,4 +1,4 @@
-#include <ritr/time/implicit_step.h>
+#include <ritr/step/implicit_step.h>
 
 namespace ritr
 {

@@ -1,4 +1,4 @@
-#include <ritr/time/incremental_potential.h>
+#include <ritr/step/incremental_potential.h>
 
 namespace ritr
 {

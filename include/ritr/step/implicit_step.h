@@ -7,8 +7,8 @@
 #include <ritr/contact/contact_potential.h>
 #include <ritr/elasticity/bulk_energy.h>
 #include <ritr/solver/newton.h>
-#include <ritr/time/incremental_potential.h>
-#include <ritr/time/step_context.h>
+#include <ritr/step/incremental_potential.h>
+#include <ritr/step/step_context.h>
 
 #include <stdexcept>
 
