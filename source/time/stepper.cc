@@ -91,13 +91,11 @@ namespace ritr
     {
       const AdaptivityScene &a = problem.scene.adaptivity;
       RitrSettings           settings;
-      settings.hessian    = a.hessian == "full" ? RitrHessian::full :
-                            a.hessian == "filtered" ? RitrHessian::filtered : RitrHessian::truncated;
-      settings.inertia    = a.inertia == "uncorrected" ? InertiaForm::uncorrected : InertiaForm::corrected;
-      settings.projection = a.projection == "after-optimization" ? PredictorProjection::after_optimization :
-                                                                   PredictorProjection::in_optimization;
-      settings.geometric_admissibility   = a.admissibility == "geometric" || a.admissibility == "both";
-      settings.physical_admissibility    = a.admissibility == "physical" || a.admissibility == "both";
+      settings.hessian                 = a.hessian;
+      settings.inertia                 = a.inertia;
+      settings.projection              = a.projection;
+      settings.geometric_admissibility = a.admissibility == Admissibility::geometric || a.admissibility == Admissibility::both;
+      settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
       settings.sliding_tolerance         = a.sliding_tolerance;
       settings.max_outer_iterations      = a.max_iterations;
       settings.measure_barrier_stiffness = a.measure_barrier_stiffness;

@@ -13,24 +13,13 @@
 //  - statics drops inertia and transfer altogether.
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/contact/contact_potential.h>
+#include <ritr/scene/adaptivity_options.h>
 #include <ritr/elasticity/bulk_energy.h>
 #include <ritr/step/step_context.h>
 #include <ritr/transfer/transfer_operator.h>
 
 namespace ritr
 {
-  enum class InertiaForm
-  {
-    corrected,   // eq. 10
-    uncorrected  // eq. 8 (ablation)
-  };
-
-  enum class PredictorProjection
-  {
-    in_optimization,    // eq. 6: pi_t applied at every candidate mesh
-    after_optimization  // ablation: nodal values kept during the solve, remapped afterwards
-  };
-
   template <int dim>
   class RitrObjective
   {

@@ -12,25 +12,12 @@
 // are minimised jointly).
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/adaptivity/ritr_objective.h>
+#include <ritr/scene/adaptivity_options.h>
 #include <ritr/solver/sparse_cholesky.h>
 #include <ritr/step/implicit_step.h>
 
 namespace ritr
 {
-  // The outer Hessian: `truncated` drops the implicit response of x like paper eq. 23, but
-  // takes d2R/du2 with x following u (ReferenceBlock::following): at fixed x it is three
-  // orders of magnitude stiffer than the reduced Hessian and the iteration stalls (Fig. 9
-  // rod). It is factorized with a diagonal shift where it is indefinite. `full` adds the
-  // implicit response of x, -H_ux H_xx^{-1} H_xu, and projects the result as a whole;
-  // `filtered` keeps only the entries of the response dx/du above a relative threshold.
-  // Both of the latter are dense: for small meshes and for comparison only.
-  enum class RitrHessian
-  {
-    truncated,
-    full,
-    filtered
-  };
-
   // Why the outer iteration of a step stopped.
   enum class OuterStop
   {
