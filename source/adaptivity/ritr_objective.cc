@@ -13,7 +13,7 @@ namespace ritr
 {
   template <int dim>
   RitrObjective<dim>::RitrObjective(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk,
-                                    ContactPotential<dim> *contact, const transfer::SimplexQuadrature<dim> &quadrature,
+                                    ContactPotential<dim> *contact, const SimplexQuadrature<dim> &quadrature,
                                     const InertiaForm inertia, const PredictorProjection projection)
     : mesh_(mesh)
     , bulk_(bulk)
@@ -37,24 +37,20 @@ namespace ritr
   }
 
   template <int dim>
-  void RitrObjective<dim>::begin_step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t,
-                                      const Eigen::VectorXd &v_t, const double h, const bool dynamic,
-                                      const std::array<double, dim> &gravity)
+  void RitrObjective<dim>::begin_step(const StepContext<dim> &step)
   {
-    dynamic_   = dynamic;
-    predictor_ = x_t + h * v_t;
-    CellEnergyWeights<dim> w;
-    w.inertia           = dynamic ? 1.0 : 0.0;
-    w.potential         = dynamic ? h * h : 1.0;
-    w.gravity           = gravity;
+    const bool dynamic = step.dynamic;
+    dynamic_           = dynamic;
+    predictor_         = step.predictor();
+    CellEnergyWeights<dim> w = step.cell_weights();
     w.corrected_inertia = !(projection_ == PredictorProjection::after_optimization && inertia_ == InertiaForm::uncorrected);
     bulk_.set_weights(w);
     // With the in-optimization projection the predictor enters through the transfer only.
-    bulk_.set_predictor(uses_transfer() || !dynamic ? Eigen::VectorXd::Zero(x_t.size()) : predictor_);
+    bulk_.set_predictor(uses_transfer() || !dynamic ? Eigen::VectorXd::Zero(predictor_.size()) : predictor_);
     if (dynamic)
       {
         ScopedTimer timer(transfer_seconds_);
-        transfer_.set_old_mesh(u_t);
+        transfer_.set_old_mesh(step.u_start);
       }
   }
 
@@ -95,10 +91,7 @@ namespace ritr
           r += 0.5 * density_ * transfer_.value(projected_predictor_, predictor_);  // 1/2 rho pi^T Mbar pi
       }
     if (contact_)
-      {
-        contact_->forget_candidates();
-        r += contact_->value(z);
-      }
+      r += contact_->value(z, contact_->candidates_at(z));
     if (kappa_w_ > 0)
       r += reference_measure_barrier(mesh_, u, w_hat_, kappa_w_);
     return r;
@@ -157,9 +150,9 @@ namespace ritr
       }
     if (contact_)
       {
-        contact_->forget_candidates();
+        const CollisionCandidates candidates = contact_->candidates_at(z);
         typename ContactPotential<dim>::ReferenceDerivatives rd;
-        contact_->reference_derivatives(z, rd);
+        contact_->reference_derivatives(z, candidates, rd);
         d.gu += rd.gu;
         d.huu.insert(d.huu.end(), rd.huu.begin(), rd.huu.end());
         if (following)
@@ -173,15 +166,15 @@ namespace ritr
                   d.huu.emplace_back(t.col(), t.row(), t.value());
                 }
             Triplets hxx;
-            contact_->add_hessian(z, hxx, true);
+            contact_->add_hessian(z, candidates, hxx, true);
             for (const auto &t : hxx)
               if (t.row() < n_u && t.col() < n_u)
                 d.huu.push_back(t);
           }
         if (coupling)
           {
-            contact_->add_gradient(z, d.gx);
-            contact_->add_hessian(z, d.hxx, true);
+            contact_->add_gradient(z, candidates, d.gx);
+            contact_->add_hessian(z, candidates, d.hxx, true);
             d.hxu.insert(d.hxu.end(), rd.hxu.begin(), rd.hxu.end());
           }
       }

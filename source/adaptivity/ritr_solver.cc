@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace ritr
 {
@@ -37,7 +38,7 @@ namespace ritr
   template <int dim>
   RitrSolver<dim>::RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
                               ImplicitStep<dim> &inner, const RitrSettings &settings,
-                              const transfer::SimplexQuadrature<dim> &quadrature)
+                              const SimplexQuadrature<dim> &quadrature)
     : mesh_(mesh)
     , contact_(contact)
     , inner_(inner)
@@ -163,15 +164,15 @@ namespace ritr
   }
 
   template <int dim>
-  typename RitrSolver<dim>::Result RitrSolver<dim>::step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t,
-                                                         const Eigen::VectorXd &v_t, const Eigen::VectorXd &targets,
-                                                         const double h, const bool dynamic,
-                                                         const std::array<double, dim> &gravity)
+  typename RitrSolver<dim>::Result RitrSolver<dim>::step(const StepContext<dim> &step)
   {
+    const Eigen::VectorXd &u_t = step.u_start, &z_t = step.z_start, &targets = step.targets;
+    const double           h = step.time_step;
+    const bool             dynamic = step.dynamic;
     const Eigen::Index    n_u = u_t.size();
     const Eigen::VectorXd x_t = z_t.head(n_u);
     const double          transfer_before = objective_.transfer_seconds();
-    objective_.begin_step(u_t, x_t, v_t.head(n_u), h, dynamic, gravity);
+    objective_.begin_step(step);
 
     Result r;
     r.u = u_t;
@@ -182,7 +183,7 @@ namespace ritr
       ScopedTimer timer(r.inner_seconds);
       objective_.set_candidate(u_t);
       inner_.set_linear_term(objective_.linear_term());
-      r.inner_iterations += inner_.solve_start_of_step(u_t, r.z, z_t, targets).iterations;
+      r.inner_iterations += inner_.solve_start_of_step(step, r.z).iterations;
     }
     // The measure barrier's stiffness matches the contact barrier's (paper 5.3.2); without
     // contact it is the elastic stiffness per unit measure at the threshold w_hat.
@@ -205,55 +206,82 @@ namespace ritr
   }
 
   template <int dim>
-  void RitrSolver<dim>::nested_solve(const Eigen::VectorXd &targets, Result &r)
+  template <typename Direction, typename Evaluate, typename Accept>
+  void RitrSolver<dim>::descend(Result &r, const Direction &direction, const Evaluate &evaluate,
+                                const Accept &accept) const
   {
-    const bool truncated = settings_.hessian == RitrHessian::truncated;
     for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
       {
-        objective_.set_candidate(r.u);
-        const auto d = objective_.derivatives(
-          r.z, r.u, truncated ? ReferenceBlock::following : ReferenceBlock::exact, !truncated);
-        const Eigen::VectorXd g_reduced = basis_.transpose() * d.gu;
-        const Eigen::VectorXd g         = basis_ * g_reduced;
-        Eigen::VectorXd       du        = basis_ * solve_outer(outer_hessian(d), -g_reduced, r);
-        // Newton steps are trusted up to half the initial smallest cell size. Where the outer
-        // Hessian nearly vanishes (flat, or concave once projected) the solve returns a huge
-        // or non-finite step: then steepest descent of that length instead.
-        const double trust = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
-        if (!du.allFinite() || du.dot(g) >= 0)
-          du = -trust / std::max(g.lpNorm<Eigen::Infinity>(), 1e-300) * g;
-        else if (du.lpNorm<Eigen::Infinity>() > trust)
-          du *= trust / du.lpNorm<Eigen::Infinity>();
-        if (du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
+        const std::optional<double> first_fraction = direction();
+        if (!first_fraction)
           {
-            r.converged = true;
+            r.stop = OuterStop::converged;
             return;
           }
-
-        // Backtracking on R from the largest step that keeps the reference mesh admissible;
-        // every trial mesh re-solves the implicit step, warm-started from the current x.
-        Eigen::VectorXd u_trial, z_trial;
-        double          trial_objective = std::numeric_limits<double>::infinity();
-        for (double alpha = step_filter(r.u, du); alpha > 1e-12; alpha *= 0.5)
+        // Backtracking by halves on R: a trial is taken as soon as R does not increase.
+        bool decreased = false;
+        double alpha = *first_fraction;
+        for (; alpha > 1e-12; alpha *= 0.5)
           {
             ++r.line_search_trials;
-            u_trial = r.u + alpha * du;
-            z_trial = r.z;
-            if (!solve_on_mesh(u_trial, z_trial, targets, r))
-              continue;
-            trial_objective = objective_.value(z_trial, u_trial);
+            const double trial_objective = evaluate(alpha);
             if (trial_objective <= r.objective)
-              break;
+              {
+                r.objective = trial_objective;
+                decreased   = true;
+                break;
+              }
           }
-        if (!(trial_objective <= r.objective))
+        if (!decreased)
           {
-            r.converged = true;  // no decrease along a descent direction: converged to round-off
+            // No decrease along a descent direction: R is flat to round-off here, or the
+            // direction is poor. The caller decides which; it is not called convergence.
+            r.stop = OuterStop::line_search_failed;
             return;
           }
-        r.u         = u_trial;
-        r.z         = z_trial;
-        r.objective = trial_objective;
+        accept(alpha);
       }
+    r.stop = OuterStop::iteration_limit;
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::nested_solve(const Eigen::VectorXd &targets, Result &r)
+  {
+    const bool      truncated = settings_.hessian == RitrHessian::truncated;
+    Eigen::VectorXd du, u_trial, z_trial;
+    const auto direction = [&]() -> std::optional<double> {
+      objective_.set_candidate(r.u);
+      const auto d = objective_.derivatives(
+        r.z, r.u, truncated ? ReferenceBlock::following : ReferenceBlock::exact, !truncated);
+      const Eigen::VectorXd g_reduced = basis_.transpose() * d.gu;
+      const Eigen::VectorXd g         = basis_ * g_reduced;
+      du                              = basis_ * solve_outer(outer_hessian(d), -g_reduced, r);
+      // Newton steps are trusted up to half the initial smallest cell size. Where the outer
+      // Hessian nearly vanishes (flat, or concave once projected) the solve returns a huge
+      // or non-finite step: then steepest descent of that length instead.
+      const double trust = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
+      if (!du.allFinite() || du.dot(g) >= 0)
+        du = -trust / std::max(g.lpNorm<Eigen::Infinity>(), 1e-300) * g;
+      else if (du.lpNorm<Eigen::Infinity>() > trust)
+        du *= trust / du.lpNorm<Eigen::Infinity>();
+      if (du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
+        return std::nullopt;
+      return step_filter(r.u, du);  // the largest step that keeps the reference mesh admissible
+    };
+    // Every trial mesh re-solves the implicit step, warm-started from the current x; a mesh
+    // where that fails is rejected like one that raises R.
+    const auto evaluate = [&](const double alpha) {
+      u_trial = r.u + alpha * du;
+      z_trial = r.z;
+      if (!solve_on_mesh(u_trial, z_trial, targets, r))
+        return std::numeric_limits<double>::infinity();
+      return objective_.value(z_trial, u_trial);
+    };
+    const auto accept = [&](double) {
+      r.u = u_trial;
+      r.z = z_trial;
+    };
+    descend(r, direction, evaluate, accept);
   }
 
   template <int dim>
@@ -270,52 +298,42 @@ namespace ritr
       select.emplace_back(free_state_[a], a, 1.0);
     const Eigen::SparseMatrix<double> S = to_sparse(select, n_z, n_f);
 
-    for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
-      {
-        objective_.set_candidate(r.u);
-        auto d = objective_.derivatives(r.z, r.u, ReferenceBlock::exact, true);
-        Eigen::VectorXd g(n_f + n_b);
-        g << S.transpose() * d.gx, basis_.transpose() * d.gu;
-        const Eigen::SparseMatrix<double> hxx = S.transpose() * to_sparse(d.hxx, n_z, n_z) * S;
-        const Eigen::SparseMatrix<double> hxu = S.transpose() * to_sparse(d.hxu, n_z, n_u) * basis_;
-        const Eigen::SparseMatrix<double> huu = basis_.transpose() * to_sparse(d.huu, n_u, n_u) * basis_;
-        Triplets                          blocks;
-        const auto add = [&](const Eigen::SparseMatrix<double> &m, Eigen::Index r0, Eigen::Index c0, bool transpose) {
-          for (int k = 0; k < m.outerSize(); ++k)
-            for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
-              transpose ? blocks.emplace_back(c0 + it.col(), r0 + it.row(), it.value()) :
-                          blocks.emplace_back(r0 + it.row(), c0 + it.col(), it.value());
-        };
-        add(hxx, 0, 0, false);
-        add(hxu, 0, n_f, false);
-        add(hxu, 0, n_f, true);
-        add(huu, n_f, n_f, false);
-        const Eigen::VectorXd step = solve_outer(to_sparse(blocks, n_f + n_b, n_f + n_b), -g, r);
-        const Eigen::VectorXd dz = S * step.head(n_f), du = basis_ * step.tail(n_b);
-        if (std::max(dz.lpNorm<Eigen::Infinity>(), du.lpNorm<Eigen::Infinity>()) <= settings_.epsilon_r)
-          {
-            r.converged = true;
-            return;
-          }
-        double trial_objective = std::numeric_limits<double>::infinity();
-        double alpha           = step_filter(r.u, du);
-        for (; alpha > 1e-12; alpha *= 0.5)
-          {
-            ++r.line_search_trials;
-            objective_.set_candidate(r.u + alpha * du);
-            trial_objective = objective_.value(r.z + alpha * dz, r.u + alpha * du);
-            if (trial_objective <= r.objective)
-              break;
-          }
-        if (!(trial_objective <= r.objective))
-          {
-            r.converged = true;
-            return;
-          }
-        r.u += alpha * du;
-        r.z += alpha * dz;
-        r.objective = trial_objective;
-      }
+    Eigen::VectorXd dz, du;
+    const auto direction = [&]() -> std::optional<double> {
+      objective_.set_candidate(r.u);
+      auto d = objective_.derivatives(r.z, r.u, ReferenceBlock::exact, true);
+      Eigen::VectorXd g(n_f + n_b);
+      g << S.transpose() * d.gx, basis_.transpose() * d.gu;
+      const Eigen::SparseMatrix<double> hxx = S.transpose() * to_sparse(d.hxx, n_z, n_z) * S;
+      const Eigen::SparseMatrix<double> hxu = S.transpose() * to_sparse(d.hxu, n_z, n_u) * basis_;
+      const Eigen::SparseMatrix<double> huu = basis_.transpose() * to_sparse(d.huu, n_u, n_u) * basis_;
+      Triplets                          blocks;
+      const auto add = [&](const Eigen::SparseMatrix<double> &m, Eigen::Index r0, Eigen::Index c0, bool transpose) {
+        for (int k = 0; k < m.outerSize(); ++k)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
+            transpose ? blocks.emplace_back(c0 + it.col(), r0 + it.row(), it.value()) :
+                        blocks.emplace_back(r0 + it.row(), c0 + it.col(), it.value());
+      };
+      add(hxx, 0, 0, false);
+      add(hxu, 0, n_f, false);
+      add(hxu, 0, n_f, true);
+      add(huu, n_f, n_f, false);
+      const Eigen::VectorXd step = solve_outer(to_sparse(blocks, n_f + n_b, n_f + n_b), -g, r);
+      dz = S * step.head(n_f);
+      du = basis_ * step.tail(n_b);
+      if (std::max(dz.lpNorm<Eigen::Infinity>(), du.lpNorm<Eigen::Infinity>()) <= settings_.epsilon_r)
+        return std::nullopt;
+      return step_filter(r.u, du);
+    };
+    const auto evaluate = [&](const double alpha) {
+      objective_.set_candidate(r.u + alpha * du);
+      return objective_.value(r.z + alpha * dz, r.u + alpha * du);
+    };
+    const auto accept = [&](const double alpha) {
+      r.u += alpha * du;
+      r.z += alpha * dz;
+    };
+    descend(r, direction, evaluate, accept);
   }
 
   template class RitrSolver<1>;

@@ -194,11 +194,10 @@ namespace ritr
   }
 
   template <int dim>
-  std::vector<contact::Constraint> ContactPotential<dim>::active_constraints(const Eigen::MatrixXd &V) const
+  std::vector<contact::Constraint> ContactPotential<dim>::active_constraints(const Eigen::MatrixXd &V,
+                                                                           const CollisionCandidates &candidates) const
   {
-    auto constraints = candidates_ ?
-                         contact::build_constraints<dim>(surface_, *candidates_, V, rest_positions_, settings_.dhat) :
-                         contact::build_constraints<dim>(surface_, V, rest_positions_, settings_.dhat);
+    auto constraints = contact::build_constraints<dim>(surface_, candidates, V, rest_positions_, settings_.dhat);
     if (!settings_.self_contact)
       constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
                                        [&](const contact::Constraint &c) {
@@ -230,7 +229,8 @@ namespace ritr
   }
 
   template <int dim>
-  void ContactPotential<dim>::update_friction(const Eigen::VectorXd &z_lagged, const Eigen::VectorXd &z_start)
+  void ContactPotential<dim>::update_friction(const Eigen::VectorXd &z_lagged, const CollisionCandidates &candidates,
+                                              const Eigen::VectorXd &z_start)
   {
     friction_.clear();
     friction_start_ = collision_positions(z_start);
@@ -240,7 +240,7 @@ namespace ritr
     friction_sources_.clear();
     friction_unit_force_.clear();
     // One constraint at a time, so that each friction term keeps its weight's sources.
-    for (const auto &c : active_constraints(V))
+    for (const auto &c : active_constraints(V, candidates))
       for (const auto &f :
            contact::build_friction_constraints<dim>({c}, V, settings_.dhat, kappa_, weights_, settings_.friction_coefficient))
         {
@@ -258,7 +258,8 @@ namespace ritr
   }
 
   template <int dim>
-  void ContactPotential<dim>::reference_derivatives(const Eigen::VectorXd &z, ReferenceDerivatives &out) const
+  void ContactPotential<dim>::reference_derivatives(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                                    ReferenceDerivatives &out) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
     out.gu                  = Eigen::VectorXd::Zero(mesh_.n_nodes() * dim);
@@ -287,7 +288,7 @@ namespace ritr
         }
     };
 
-    const auto constraints = active_constraints(V);
+    const auto constraints = active_constraints(V, candidates);
     const auto terms       = contact::unweighted_barrier_terms<dim>(constraints, V, settings_.dhat);
     for (std::size_t k = 0; k < constraints.size(); ++k)
       {
@@ -314,54 +315,62 @@ namespace ritr
   }
 
   template <int dim>
-  double ContactPotential<dim>::value(const Eigen::VectorXd &z) const
+  double ContactPotential<dim>::value(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
-    double e = kappa_ * contact::barrier_energy<dim>(active_constraints(V), V, settings_.dhat, weights_);
+    double e = kappa_ * contact::barrier_energy<dim>(active_constraints(V, candidates), V, settings_.dhat, weights_);
     if (!friction_.empty())
       e += contact::friction_energy<dim>(friction_, V, friction_start_, settings_.epsilon_v_times_h);
     return e;
   }
 
   template <int dim>
-  void ContactPotential<dim>::add_gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) const
+  void ContactPotential<dim>::add_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                           Eigen::VectorXd &g) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
-    scatter_gradient(contact::barrier_gradient<dim>(active_constraints(V), V, settings_.dhat, weights_), kappa_, g);
+    scatter_gradient(contact::barrier_gradient<dim>(active_constraints(V, candidates), V, settings_.dhat, weights_), kappa_, g);
     if (!friction_.empty())
       scatter_gradient(contact::friction_gradient<dim>(friction_, V, friction_start_, settings_.epsilon_v_times_h), 1.0, g);
   }
 
   template <int dim>
-  void ContactPotential<dim>::add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h,
+  void ContactPotential<dim>::add_hessian(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                          std::vector<Eigen::Triplet<double>> &h,
                                           const bool project) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
-    scatter_hessian(contact::barrier_hessian<dim>(active_constraints(V), V, settings_.dhat, weights_, project), kappa_, h);
+    scatter_hessian(contact::barrier_hessian<dim>(active_constraints(V, candidates), V, settings_.dhat, weights_, project), kappa_, h);
     if (!friction_.empty())
       scatter_hessian(contact::friction_hessian<dim>(friction_, V, friction_start_, settings_.epsilon_v_times_h, project), 1.0, h);
   }
 
   template <int dim>
-  Eigen::VectorXd ContactPotential<dim>::barrier_gradient(const Eigen::VectorXd &z) const
+  Eigen::VectorXd ContactPotential<dim>::barrier_gradient(const Eigen::VectorXd &z,
+                                                          const CollisionCandidates &candidates) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
     Eigen::VectorXd       g = Eigen::VectorXd::Zero(z.size());
-    scatter_gradient(contact::barrier_gradient<dim>(active_constraints(V), V, settings_.dhat, weights_), 1.0, g);
+    scatter_gradient(contact::barrier_gradient<dim>(active_constraints(V, candidates), V, settings_.dhat, weights_), 1.0, g);
     return g;
   }
 
   template <int dim>
-  void ContactPotential<dim>::begin_iteration(const Eigen::VectorXd &z)
+  CollisionCandidates ContactPotential<dim>::candidates_at(const Eigen::VectorXd &z) const
   {
-    candidates_ = contact::find_candidates<dim>(surface_, collision_positions(z), settings_.dhat);
+    return contact::find_candidates<dim>(surface_, collision_positions(z), settings_.dhat);
   }
 
   template <int dim>
-  double ContactPotential<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
+  CollisionCandidates ContactPotential<dim>::candidates_along(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
+  {
+    return contact::find_candidates<dim>(surface_, collision_positions(z), collision_positions(z + dz), settings_.dhat);
+  }
+
+  template <int dim>
+  double ContactPotential<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
   {
     const Eigen::MatrixXd V0 = collision_positions(z), V1 = collision_positions(z + dz);
-    candidates_ = contact::find_candidates<dim>(surface_, V0, V1, settings_.dhat);
     // Inflating by dhat keeps the separation guarantee (d >= 0.1 d0) for every pair that can
     // come within the barrier's range, not only for pairs whose swept boxes touch: a pair
     // ending exactly in contact could otherwise slip through with a round-off-sized gap.
@@ -381,10 +390,11 @@ namespace ritr
   }
 
   template <int dim>
-  double ContactPotential<dim>::active_minimum_distance(const Eigen::VectorXd &z) const
+  double ContactPotential<dim>::active_minimum_distance(const Eigen::VectorXd &z,
+                                                      const CollisionCandidates &candidates) const
   {
     const Eigen::MatrixXd V = collision_positions(z);
-    return contact::minimum_distance<dim>(active_constraints(V), V);
+    return contact::minimum_distance<dim>(active_constraints(V, candidates), V);
   }
 
   template <int dim>

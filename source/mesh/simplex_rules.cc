@@ -7,9 +7,9 @@ namespace ritr
   namespace
   {
     template <int dim>
-    transfer::SimplexQuadrature<dim> to_barycentric(const dealii::Quadrature<dim> &q)
+    SimplexQuadrature<dim> to_barycentric(const dealii::Quadrature<dim> &q)
     {
-      transfer::SimplexQuadrature<dim> rule;
+      SimplexQuadrature<dim> rule;
       for (unsigned int p = 0; p < q.size(); ++p)
         {
           std::array<double, dim + 1> lambda;
@@ -22,13 +22,13 @@ namespace ritr
           rule.points.push_back(lambda);
           rule.weights.push_back(q.weight(p));
         }
-      transfer::check_rule(rule);
+      check_rule(rule);
       return rule;
     }
   } // namespace
 
   template <int dim>
-  transfer::SimplexQuadrature<dim> gauss_simplex_rule(const unsigned int n_points_1d)
+  SimplexQuadrature<dim> gauss_simplex_rule(const unsigned int n_points_1d)
   {
     if constexpr (dim == 1)
       return to_barycentric<dim>(dealii::QGauss<dim>(n_points_1d));
@@ -37,7 +37,7 @@ namespace ritr
   }
 
   template <int dim>
-  transfer::SimplexQuadrature<dim> witherden_vincent_rule(const unsigned int n_points_1d)
+  SimplexQuadrature<dim> witherden_vincent_rule(const unsigned int n_points_1d)
   {
     if constexpr (dim == 1)
       return to_barycentric<dim>(dealii::QGauss<dim>(n_points_1d));
@@ -45,10 +45,10 @@ namespace ritr
       return to_barycentric<dim>(dealii::QWitherdenVincentSimplex<dim>(n_points_1d));
   }
 
-  template transfer::SimplexQuadrature<1> gauss_simplex_rule<1>(unsigned int);
-  template transfer::SimplexQuadrature<2> gauss_simplex_rule<2>(unsigned int);
-  template transfer::SimplexQuadrature<3> gauss_simplex_rule<3>(unsigned int);
-  template transfer::SimplexQuadrature<1> witherden_vincent_rule<1>(unsigned int);
-  template transfer::SimplexQuadrature<2> witherden_vincent_rule<2>(unsigned int);
-  template transfer::SimplexQuadrature<3> witherden_vincent_rule<3>(unsigned int);
+  template SimplexQuadrature<1> gauss_simplex_rule<1>(unsigned int);
+  template SimplexQuadrature<2> gauss_simplex_rule<2>(unsigned int);
+  template SimplexQuadrature<3> gauss_simplex_rule<3>(unsigned int);
+  template SimplexQuadrature<1> witherden_vincent_rule<1>(unsigned int);
+  template SimplexQuadrature<2> witherden_vincent_rule<2>(unsigned int);
+  template SimplexQuadrature<3> witherden_vincent_rule<3>(unsigned int);
 } // namespace ritr

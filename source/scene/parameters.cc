@@ -356,10 +356,10 @@ namespace ritr
 
       prm.enter_subsection("Adaptivity");
       s.adaptivity.enabled           = prm.get_bool("enabled");
-      s.adaptivity.hessian           = prm.get("hessian");
-      s.adaptivity.inertia           = prm.get("inertia");
-      s.adaptivity.projection        = prm.get("projection");
-      s.adaptivity.admissibility     = prm.get("admissibility");
+      s.adaptivity.hessian           = ritr_hessian_from(prm.get("hessian"));
+      s.adaptivity.inertia           = inertia_form_from(prm.get("inertia"));
+      s.adaptivity.projection        = predictor_projection_from(prm.get("projection"));
+      s.adaptivity.admissibility     = admissibility_from(prm.get("admissibility"));
       s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
       s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
       s.adaptivity.epsilon_r         = prm.get_double("epsilon r");

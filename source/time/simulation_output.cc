@@ -71,7 +71,7 @@ namespace ritr
                         VtuField{"contact_pressure", 1, nodal_contact_pressures(mesh_, x_, forces)}};
     const std::vector<double> material_ids(mesh_.cell_material.begin(), mesh_.cell_material.end());
     piece.cell_data = {scalar_field("strain", cell_strains(mesh_, x_, u_)),
-                       scalar_field("von_mises_stress", cell_von_mises_stresses(*bulk_, x_, u_)),
+                       scalar_field("von_mises_stress", cell_von_mises_stresses(bulk_energy(), x_, u_)),
                        scalar_field("material_id", material_ids),
                        scalar_field("element_quality", cell_qualities(mesh_, u_))};
 
@@ -145,7 +145,7 @@ namespace ritr
       s << "  \"scene\": " << json_string(scene_.parameter_file) << ",\n"
         << "  \"dimension\": " << dim << ",\n"
         << "  \"mode\": \"" << scene_.mode << "\",\n"
-        << "  \"adaptivity\": " << (ritr_ ? "true" : "false") << ",\n"
+        << "  \"adaptivity\": " << (scene_.adaptivity.enabled ? "true" : "false") << ",\n"
         << "  \"steps\": " << history_.size() << ",\n"
         << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
         << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
@@ -186,7 +186,7 @@ namespace ritr
       << ',' << record.step_norm << ',' << record.gradient_norm << ',' << record.ccd_bound << ',' << record.alpha
       << ',' << record.prescribed_moving << ',' << record.judged_by_gradient << ',' << record.hessian_shift << ','
       << (contact_ ? contact_->stiffness() : 0.0) << ','
-      << (contact_ ? contact_->active_minimum_distance(z) : std::numeric_limits<double>::infinity()) << '\n';
+      << (contact_ ? contact_->active_minimum_distance(z, contact_->candidates_at(z)) : std::numeric_limits<double>::infinity()) << '\n';
   }
 
   template <int dim>

@@ -20,7 +20,7 @@ namespace ritr::transfer
     const std::size_t n_cells = cells_.size();
     nodes_.resize(n_cells * (dim + 1));
     maps_.resize(n_cells);
-    std::vector<contact::Aabb<dim>> boxes(n_cells);
+    std::vector<Aabb<dim>> boxes(n_cells);
     double                          diameter_sum = 0;
     for (std::size_t o = 0; o < n_cells; ++o)
       {
@@ -49,7 +49,7 @@ namespace ritr::transfer
         m.offset.template tail<dim>()              = -Dinv * p0;
         m.offset[0]                                = 1.0 - m.offset.template tail<dim>().sum();
 
-        contact::Aabb<dim> &box = boxes[o];
+        Aabb<dim> &box = boxes[o];
         for (int a = 0; a <= dim; ++a)
           {
             box.min = box.min.cwiseMin(nodes_[o * (dim + 1) + a]);
@@ -60,7 +60,7 @@ namespace ritr::transfer
         // A point with mu_b >= -tolerance lies within tolerance * (height) of the cell.
         box.inflate(2 * tolerance_ * diameter);
       }
-    tree_           = contact::AabbTree<dim>(boxes);
+    tree_           = AabbTree<dim>(boxes);
     build_neighbors();
     initial_radius_ = n_cells > 0 ? diameter_sum / n_cells : 1.0;
   }
@@ -184,7 +184,7 @@ namespace ritr::transfer
   template <int dim>
   Location<dim> OldMeshLocator<dim>::locate_in_tree(const Point &X, const int hint) const
   {
-    contact::Aabb<dim> query;
+    Aabb<dim> query;
     query.min = X;
     query.max = X;
     Location<dim> result;
@@ -217,7 +217,7 @@ namespace ritr::transfer
       radius = 1e-3 * initial_radius_;
     for (;;)
       {
-        contact::Aabb<dim> query;
+        Aabb<dim> query;
         query.min = X;
         query.max = X;
         query.inflate(radius);

@@ -165,9 +165,7 @@ namespace ritr::contact::test_support
 
   inline Eigen::MatrixXd dense(const std::vector<Eigen::Triplet<double>> &t, const int n)
   {
-    Eigen::SparseMatrix<double> H(n, n);
-    H.setFromTriplets(t.begin(), t.end());
-    return Eigen::MatrixXd(H);
+    return ritr::test_support::dense(t, n, n);
   }
 
   // Position matrix (one row per vertex) <-> vertex-major vector, the layout of assembled

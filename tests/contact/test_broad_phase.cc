@@ -128,17 +128,17 @@ namespace
   }
 
   template <int dim>
-  Aabb<dim> pair_box(const CollisionSurface<dim> &s, const Eigen::MatrixXd &V0,
+  ritr::Aabb<dim> pair_box(const CollisionSurface<dim> &s, const Eigen::MatrixXd &V0,
                      const Eigen::MatrixXd &V1, const Candidate &c, const int side, const double r)
   {
     std::array<int, 4> v;
     const int          n = stencil_vertices<dim>(s, c, v);
     // Side 0: the first primitive (point or edge a), side 1: the other one.
     const int n_first = c.kind == ContactKind::edge_edge ? 2 : 1;
-    Aabb<dim> box;
+    ritr::Aabb<dim> box;
     for (int i = side == 0 ? 0 : n_first; i < (side == 0 ? n_first : n); ++i)
       {
-        Aabb<dim> b;
+        ritr::Aabb<dim> b;
         b.min = V0.row(v[i]).transpose().cwiseMin(V1.row(v[i]).transpose());
         b.max = V0.row(v[i]).transpose().cwiseMax(V1.row(v[i]).transpose());
         box.extend(b);
@@ -198,16 +198,16 @@ namespace
 
 TEST(BroadPhase, AabbTreeQueriesMatchBruteForce)
 {
-  std::vector<Aabb<3>> boxes(500);
+  std::vector<ritr::Aabb<3>> boxes(500);
   for (auto &b : boxes)
     {
       b.min = random_vector<3>();
       b.max = b.min + 0.1 * (random_vector<3>().array() + 1.0).matrix();
     }
-  const AabbTree<3> tree(boxes);
+  const ritr::AabbTree<3> tree(boxes);
   for (int q = 0; q < 100; ++q)
     {
-      Aabb<3> query;
+      ritr::Aabb<3> query;
       query.min = random_vector<3>();
       query.max = query.min + 0.3 * (random_vector<3>().array() + 1.0).matrix();
       std::set<int> found, expected;

@@ -12,7 +12,7 @@ namespace ritr::test_support
   {
     // `kinematic` marks prescribed state entries (empty: none).
     RitrSetup(const SimplexMesh<dim> &m, const Material &material, const RitrSettings &settings,
-              const transfer::SimplexQuadrature<dim> &quadrature, std::vector<bool> kinematic = {},
+              const SimplexQuadrature<dim> &quadrature, std::vector<bool> kinematic = {},
               const double inner_tolerance = 1e-10)
       : mesh(m)
       , bulk(mesh, std::vector<Material>(

@@ -1,6 +1,6 @@
 // Simplex quadrature rules: exactness on monomials in barycentric coordinates.
 #include <ritr/common/small_matrix.h>
-#include <ritr/transfer/simplex_quadrature.h>
+#include <ritr/common/simplex_quadrature.h>
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,6 @@
 #include <functional>
 
 using namespace ritr;
-using namespace ritr::transfer;
 
 namespace
 {

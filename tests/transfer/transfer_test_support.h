@@ -4,6 +4,8 @@
 #include <ritr/common/small_matrix.h>
 #include <ritr/transfer/transfer_operator.h>
 
+#include "finite_difference.h"
+
 #include <Eigen/Core>
 #include <Eigen/Dense>
 
@@ -167,10 +169,7 @@ namespace ritr::transfer::test
     return f;
   }
 
-  inline double relative_error(const Eigen::MatrixXd &a, const Eigen::MatrixXd &b)
-  {
-    return (a - b).norm() / std::max({a.norm(), b.norm(), 1e-12});
-  }
+  using ritr::test_support::relative_error;
 
   // Central differences of a function of the candidate mesh with the located old cells
   // frozen. `evaluate(u)` must call set_candidate(u) on `op` and return the quantity. A

@@ -31,14 +31,20 @@ namespace
     const SimplexMesh<dim> mesh = test_support::small_box_mesh<dim>(3);
     const Material         material{MaterialModel::neo_hookean, 2e4, 0.3, 800};
     BulkEnergy<dim>        bulk(mesh, {material});
-    RitrObjective<dim>     objective(mesh, bulk, nullptr, transfer::composite_rule(transfer::degree_two_rule<dim>(), 3),
+    RitrObjective<dim>     objective(mesh, bulk, nullptr, composite_rule(degree_two_rule<dim>(), 3),
                                  inertia, projection);
     std::array<double, dim> gravity{};
     gravity[dim - 1] = -9.81;
     const Eigen::VectorXd u_t = mesh.reference;
     const Eigen::VectorXd x_t = test_support::deform(u_t, dim, 0.01, 3);
     const Eigen::VectorXd v_t = jitter(Eigen::VectorXd::Zero(u_t.size()), 2.0, 4);
-    objective.begin_step(u_t, x_t, v_t, 1e-2, true, gravity);
+    StepContext<dim> context;
+    context.time_step = 1e-2;
+    context.gravity   = gravity;
+    context.u_start   = u_t;
+    context.z_start   = x_t;
+    context.v_start   = v_t;
+    objective.begin_step(context);
 
     const Eigen::VectorXd u = jitter(u_t, 0.02, 5);
     const Eigen::VectorXd x = test_support::deform(u, dim, 0.01, 6);

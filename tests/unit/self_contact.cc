@@ -44,7 +44,7 @@ TEST(SelfContact, FoldedStripArmsRepelAndCannotCross)
   const double d = contact.minimum_distance(z);
   ASSERT_GT(d, 0.0);
   ASSERT_LT(d, settings.dhat);
-  EXPECT_GT(contact.value(z), 0.0);  // barrier active between the arms of one body
+  EXPECT_GT(contact.value(z, contact.candidates_at(z)), 0.0);  // barrier active between the arms of one body
 
   // Pressing the upper arm down by twice the gap: CCD keeps the arms apart.
   Eigen::VectorXd dz = Eigen::VectorXd::Zero(z.size());

@@ -41,7 +41,7 @@ TEST(RitrAblations, PhysicalAdmissibilityKeepsTheBeamMeshWellShaped)
   std::map<std::string, std::pair<double, double>> result;  // energy, smallest cell / initial
   for (const std::string admissibility : {"none", "geometric", "physical", "both"})
     {
-      scene.adaptivity.admissibility = admissibility;
+      scene.adaptivity.admissibility = admissibility_from(admissibility);
       const auto s                   = run_scene<2>(scene);
       result[admissibility] = {static_energy(*s), s->history().back().min_reference_measure / initial_min_measure(*s)};
       std::cout << admissibility << ": energy " << result[admissibility].first << ", smallest cell / initial "
@@ -194,7 +194,7 @@ TEST(RitrAblations, InOptimizationProjectionKeepsMomentumAndEnergy)
   const Drift  fixed                         = run_and_measure_drift<2>(scene, radius);
   scene.adaptivity.enabled                   = true;
   const Drift in_optimization                = run_and_measure_drift<2>(scene, radius);
-  scene.adaptivity.projection                = "after-optimization";
+  scene.adaptivity.projection                = PredictorProjection::after_optimization;
   const Drift after_optimization             = run_and_measure_drift<2>(scene, radius);
   std::cout << "momentum balance / energy gained: fixed mesh " << fixed.momentum << " / " << fixed.energy
             << ", in-optimization " << in_optimization.momentum << " / " << in_optimization.energy

@@ -93,8 +93,8 @@ namespace
   double ritr_middle_node(const std::string &inertia, const std::string &hessian)
   {
     Scene scene                = ritr_scene("inertia_1d.prm");
-    scene.adaptivity.inertia   = inertia;
-    scene.adaptivity.hessian   = hessian;
+    scene.adaptivity.inertia   = inertia_form_from(inertia);
+    scene.adaptivity.hessian   = ritr_hessian_from(hessian);
     const auto            s    = run_scene<1>(scene);
     std::vector<double>   u(s->reference().data(), s->reference().data() + s->reference().size());
     std::sort(u.begin(), u.end());

@@ -107,12 +107,16 @@ namespace
   settings.hessian   = hessian;
   settings.max_outer_iterations = 1000;
   test_support::RitrSetup<1> setup(mesh, material, settings,
-                                   transfer::composite_rule(transfer::degree_two_rule<1>(), 4));
+                                   composite_rule(degree_two_rule<1>(), 4));
   Eigen::VectorXd v(mesh.n_nodes());
   for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
     v[i] = 1 - 2 * mesh.reference[i];
+  StepContext<1> step;
+  step.time_step = h;
+  step.u_start = step.z_start = step.targets = mesh.reference;
+  step.v_start = v;
   const auto start  = std::chrono::steady_clock::now();
-  const auto result = setup.solver->step(mesh.reference, mesh.reference, v, mesh.reference, h, true, {0.0});
+  const auto result = setup.solver->step(step);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Node order from the DoFHandler may differ from left to right: sort by position.

@@ -13,36 +13,25 @@
 //  - statics drops inertia and transfer altogether.
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/contact/contact_potential.h>
+#include <ritr/scene/adaptivity_options.h>
 #include <ritr/elasticity/bulk_energy.h>
+#include <ritr/step/step_context.h>
 #include <ritr/transfer/transfer_operator.h>
 
 namespace ritr
 {
-  enum class InertiaForm
-  {
-    corrected,   // eq. 10
-    uncorrected  // eq. 8 (ablation)
-  };
-
-  enum class PredictorProjection
-  {
-    in_optimization,    // eq. 6: pi_t applied at every candidate mesh
-    after_optimization  // ablation: nodal values kept during the solve, remapped afterwards
-  };
-
   template <int dim>
   class RitrObjective
   {
   public:
     // `bulk` carries the materials (one density) and is shared with the inner solve.
     RitrObjective(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
-                  const transfer::SimplexQuadrature<dim> &quadrature, InertiaForm inertia,
+                  const SimplexQuadrature<dim> &quadrature, InertiaForm inertia,
                   PredictorProjection projection);
 
     // Start of a step: the start-of-step mesh u_t and the predictor x_t + h v_t on it. Sets
     // the bulk weights (dynamic: inertia 1, potential h^2; statics: 0 and 1).
-    void begin_step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &x_t, const Eigen::VectorXd &v_t, double h,
-                    bool dynamic, const std::array<double, dim> &gravity);
+    void begin_step(const StepContext<dim> &step);
 
     // The candidate mesh u of the following evaluations (locates the transfer quadrature).
     void set_candidate(const Eigen::VectorXd &u);

@@ -12,23 +12,18 @@
 // are minimised jointly).
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/adaptivity/ritr_objective.h>
+#include <ritr/scene/adaptivity_options.h>
 #include <ritr/solver/sparse_cholesky.h>
-#include <ritr/time/implicit_step.h>
+#include <ritr/step/implicit_step.h>
 
 namespace ritr
 {
-  // The outer Hessian: `truncated` drops the implicit response of x like paper eq. 23, but
-  // takes d2R/du2 with x following u (ReferenceBlock::following): at fixed x it is three
-  // orders of magnitude stiffer than the reduced Hessian and the iteration stalls (Fig. 9
-  // rod). It is factorized with a diagonal shift where it is indefinite. `full` adds the
-  // implicit response of x, -H_ux H_xx^{-1} H_xu, and projects the result as a whole;
-  // `filtered` keeps only the entries of the response dx/du above a relative threshold.
-  // Both of the latter are dense: for small meshes and for comparison only.
-  enum class RitrHessian
+  // Why the outer iteration of a step stopped.
+  enum class OuterStop
   {
-    truncated,
-    full,
-    filtered
+    converged,           // the Newton step fell below epsilon_r
+    line_search_failed,  // no trial along the direction kept R from increasing
+    iteration_limit      // max_outer_iterations reached
   };
 
   struct RitrSettings
@@ -56,7 +51,7 @@ namespace ritr
     // anchors, and w_hat = a tenth of the smallest initial cell measure).
     RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
                ImplicitStep<dim> &inner, const RitrSettings &settings,
-               const transfer::SimplexQuadrature<dim> &quadrature);
+               const SimplexQuadrature<dim> &quadrature);
 
     struct Result
     {
@@ -65,22 +60,25 @@ namespace ritr
       // R at (argmin E(., u_t), u_t): the step never ends above it.
       double          initial_objective = 0;
       double          sliding_violation = 0;
-      bool            converged         = false;  // |du| <= epsilon_r (else stopped by the iteration limit)
+      OuterStop       stop              = OuterStop::iteration_limit;
       unsigned int    outer_iterations = 0, inner_iterations = 0, line_search_trials = 0;
       double          inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
     };
 
-    // Advances (u_t, z_t, v_t) by one step of size h (dynamic: implicit Euler; static: one
-    // load step, v ignored). z_t = [x_t, obstacle vertices], `targets` the kinematic entries
-    // at the end of the step.
-    Result step(const Eigen::VectorXd &u_t, const Eigen::VectorXd &z_t, const Eigen::VectorXd &v_t,
-                const Eigen::VectorXd &targets, double h, bool dynamic, const std::array<double, dim> &gravity);
+    // Advances the step's start (u_t, z_t, v_t) by one step (dynamic: implicit Euler; static:
+    // one load step, v ignored).
+    Result step(const StepContext<dim> &step);
 
   private:
     // Newton over u with x = argmin E(., u) (physical admissibility).
     void nested_solve(const Eigen::VectorXd &targets, Result &r);
     // Newton over (x, u) jointly (the ablation without physical admissibility).
     void joint_solve(const Eigen::VectorXd &targets, Result &r);
+    // The iteration both share: `direction()` sets the next Newton step and returns the first
+    // fraction of it to try (none: converged); `evaluate(alpha)` returns R at that fraction
+    // (+infinity: rejected); `accept(alpha)` takes the trial that did not raise R.
+    template <typename Direction, typename Evaluate, typename Accept>
+    void descend(Result &r, const Direction &direction, const Evaluate &evaluate, const Accept &accept) const;
     // x = argmin E(., u) warm-started from z; false if the inner solve failed.
     bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r);
     // The outer Hessian in basis coordinates (see basis_).

@@ -13,7 +13,6 @@
 
 #include <Eigen/Sparse>
 
-#include <optional>
 
 namespace ritr
 {
@@ -24,6 +23,11 @@ namespace ritr
     double epsilon_v_times_h    = 1e-5;
     bool   self_contact         = true;
   };
+
+  // The broad-phase pairs one evaluation looks at. Callers build them (at a state, or along
+  // a step for the line search) and pass them in, so that what an evaluation sees never
+  // depends on which evaluation ran before it.
+  using CollisionCandidates = std::vector<contact::Candidate>;
 
   template <int dim>
   class ContactPotential
@@ -42,25 +46,29 @@ namespace ritr
     void   set_stiffness(double kappa) { kappa_ = kappa; }
     double stiffness() const { return kappa_; }
 
+    // Pairs within dhat at z, and pairs whose boxes swept from z to z + dz (inflated by
+    // dhat) overlap: the latter cover every state of the segment.
+    CollisionCandidates candidates_at(const Eigen::VectorXd &z) const;
+    CollisionCandidates candidates_along(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+
     // Lagged friction: normal forces and tangents from z_lagged, slip measured from z_start.
-    void update_friction(const Eigen::VectorXd &z_lagged, const Eigen::VectorXd &z_start);
+    void update_friction(const Eigen::VectorXd &z_lagged, const CollisionCandidates &candidates,
+                         const Eigen::VectorXd &z_start);
 
-    double value(const Eigen::VectorXd &z) const;  // kappa B + D, +inf on contact
-    void   add_gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) const;
-    void   add_hessian(const Eigen::VectorXd &z, std::vector<Eigen::Triplet<double>> &h, bool project) const;
+    // kappa B + D over the candidates' active pairs, +inf on contact.
+    double value(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
+    void   add_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates, Eigen::VectorXd &g) const;
+    void   add_hessian(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                       std::vector<Eigen::Triplet<double>> &h, bool project) const;
     // Unscaled barrier gradient dB/dz (for the stiffness initialisation).
-    Eigen::VectorXd barrier_gradient(const Eigen::VectorXd &z) const;
+    Eigen::VectorXd barrier_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
 
-    // Newton iterations call begin_iteration(z) and then max_step(z, dz): each computes the
-    // broad-phase candidates once (at z, then along the segment z -> z + dz, inflated by
-    // dhat), and every evaluation until the next call reuses them. Evaluations outside
-    // that pattern must call forget_candidates() first.
-    void   begin_iteration(const Eigen::VectorXd &z);
-    void   forget_candidates() { candidates_.reset(); }
-    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz);
+    // Largest fraction of dz that continuous collision detection certifies.
+    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
     double minimum_distance(const Eigen::VectorXd &z) const;  // over all primitive pairs
     bool   has_intersections(const Eigen::VectorXd &z) const;  // crossing primitives
-    double active_minimum_distance(const Eigen::VectorXd &z) const;  // over pairs within dhat
+    // Over the candidates' pairs within dhat.
+    double active_minimum_distance(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
     double bbox_diagonal(const Eigen::VectorXd &z) const;
 
     // Derivatives w.r.t. the body's reference positions u (through the barrier and friction
@@ -71,7 +79,8 @@ namespace ritr
       Eigen::VectorXd                      gu;
       std::vector<Eigen::Triplet<double>> huu, hxu;
     };
-    void reference_derivatives(const Eigen::VectorXd &z, ReferenceDerivatives &out) const;
+    void reference_derivatives(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                               ReferenceDerivatives &out) const;
 
     unsigned int n_collision_vertices() const { return surface_.n_vertices; }
     unsigned int n_state_vertices() const { return n_state_vertices_; }
@@ -79,7 +88,8 @@ namespace ritr
 
   private:
     Eigen::MatrixXd                      collision_positions(const Eigen::VectorXd &z) const;
-    std::vector<contact::Constraint>     active_constraints(const Eigen::MatrixXd &V) const;
+    std::vector<contact::Constraint>     active_constraints(const Eigen::MatrixXd &V,
+                                                            const CollisionCandidates &candidates) const;
     // Adds a collision-vertex gradient / Hessian into state numbering.
     void scatter_gradient(const Eigen::VectorXd &gc, double scale, Eigen::VectorXd &g) const;
     void scatter_hessian(const std::vector<Eigen::Triplet<double>> &hc, double scale,
@@ -96,7 +106,6 @@ namespace ritr
     Eigen::MatrixXd                 friction_start_;
     double                          kappa_ = 0;
     const SimplexMesh<dim>         &mesh_;
-    std::optional<std::vector<contact::Candidate>> candidates_;
 
     // Body boundary facets (indices into mesh.boundary_facets) whose measure makes up a
     // weight, each with its share (1/dim of a facet per vertex, 1/3 of a face per edge).

@@ -4,6 +4,7 @@
 // motion) stay strings here and are compiled by deal.II's FunctionParser where used.
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
+#include <ritr/scene/adaptivity_options.h>
 
 #include <map>
 #include <string>
@@ -59,10 +60,10 @@ namespace ritr
   struct AdaptivityScene
   {
     bool        enabled           = false;
-    std::string hessian           = "truncated";  // truncated | full | filtered
-    std::string inertia           = "corrected";  // corrected | uncorrected
-    std::string projection        = "in-optimization";  // in-optimization | after-optimization
-    std::string admissibility     = "both";       // none | geometric | physical | both
+    RitrHessian         hessian       = RitrHessian::truncated;
+    InertiaForm         inertia       = InertiaForm::corrected;
+    PredictorProjection projection    = PredictorProjection::in_optimization;
+    Admissibility       admissibility = Admissibility::both;
     double      epsilon_r         = 1e-6;         // on |du|_inf, in units of the mesh's size
     double      sliding_tolerance = 1e-6;         // eps_b
     double      measure_barrier_stiffness = 0;    // 0: automatic

@@ -4,7 +4,7 @@
 // Every quadrature point of every candidate mesh the r-ITR optimiser tries is looked up
 // here, so the per-cell affine barycentric maps are precomputed: mu(X) = G X + g. The
 // transfer derivatives use that the map is affine for a fixed old cell.
-#include <ritr/contact/broad_phase.h>
+#include <ritr/common/aabb_tree.h>
 
 #include <Eigen/Core>
 
@@ -83,7 +83,7 @@ namespace ritr::transfer
     std::vector<Point, Eigen::aligned_allocator<Point>> nodes_; // cell-major: o*(dim+1) + a
     std::vector<AffineBarycentric<dim>> maps_;
     std::vector<std::array<int, dim + 1>> neighbors_;
-    contact::AabbTree<dim>              tree_;
+    AabbTree<dim>              tree_;
     double                              tolerance_      = 1e-12;
     double                              initial_radius_ = 1; // mean cell box diagonal
   };

@@ -24,7 +24,7 @@
 // r-ITR optimiser set_candidate(u) and evaluate. Evaluations run in parallel over candidate
 // cells (TBB) and are deterministic (fixed summation order).
 #include <ritr/transfer/old_mesh_locator.h>
-#include <ritr/transfer/simplex_quadrature.h>
+#include <ritr/common/simplex_quadrature.h>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

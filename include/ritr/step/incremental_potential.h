@@ -46,6 +46,9 @@ namespace ritr
 
     BulkEnergy<dim>       &bulk_;
     ContactPotential<dim> *contact_;
+    // The pairs of the current Newton iteration: at its iterate for the derivatives, then
+    // along its step for the line search's trials.
+    CollisionCandidates    candidates_;
     const Eigen::VectorXd &reference_;
     Eigen::VectorXd        linear_term_;
     bool                   adaptive_          = false;

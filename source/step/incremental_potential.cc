@@ -1,4 +1,4 @@
-#include <ritr/time/incremental_potential.h>
+#include <ritr/step/incremental_potential.h>
 
 namespace ritr
 {
@@ -7,10 +7,10 @@ namespace ritr
   {
     if (!contact_)
       return;
-    contact_->begin_iteration(z);
+    candidates_ = contact_->candidates_at(z);
     if (!adaptive_)
       return;
-    const double d = contact_->active_minimum_distance(z);
+    const double d = contact_->active_minimum_distance(z, candidates_);
     contact_->set_stiffness(contact::update_barrier_stiffness(previous_distance_, d, contact_->stiffness(),
                                                               kappa_max_, bbox_diagonal_));
     previous_distance_ = d;
@@ -24,7 +24,7 @@ namespace ritr
       bulk += linear_term_.dot(z.head(linear_term_.size()));
     if (!std::isfinite(bulk) || !contact_)
       return bulk;
-    return bulk + contact_->value(z);
+    return bulk + contact_->value(z, candidates_);
   }
 
   template <int dim>
@@ -44,7 +44,7 @@ namespace ritr
   {
     g = bulk_gradient(z);
     if (contact_)
-      contact_->add_gradient(z, g);
+      contact_->add_gradient(z, candidates_, g);
   }
 
   template <int dim>
@@ -52,7 +52,7 @@ namespace ritr
   {
     bulk_.add_hessian(body_positions(z), reference_, project, h);
     if (contact_)
-      contact_->add_hessian(z, h, project);
+      contact_->add_hessian(z, candidates_, h, project);
     // Obstacle vertices carry no mass; a unit diagonal keeps their (prescribed) rows regular.
     for (Eigen::Index i = reference_.size(); i < z.size(); ++i)
       h.emplace_back(i, i, 1.0);
@@ -61,7 +61,10 @@ namespace ritr
   template <int dim>
   double IncrementalPotential<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
   {
-    return contact_ ? contact_->max_step(z, dz) : 1.0;
+    if (!contact_)
+      return 1.0;
+    candidates_ = contact_->candidates_along(z, dz);
+    return contact_->max_step(z, dz);
   }
 
   template class IncrementalPotential<1>;

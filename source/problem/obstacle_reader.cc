@@ -1,5 +1,5 @@
 #include <ritr/mesh/gmsh_nodes.h>
-#include <ritr/mesh/obstacle_reader.h>
+#include <ritr/problem/obstacle_reader.h>
 
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>

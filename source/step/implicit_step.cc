@@ -1,4 +1,4 @@
-#include <ritr/time/implicit_step.h>
+#include <ritr/step/implicit_step.h>
 
 namespace ritr
 {
@@ -19,10 +19,7 @@ namespace ritr
   {
     reference_ = u;
     if (contact_)
-      {
-        contact_->set_reference(u);
-        contact_->forget_candidates();
-      }
+      contact_->set_reference(u);
     const NewtonResult r = newton_.minimize(potential_, z, kinematic_, targets, settings_.newton);
     if (!r.converged)
       throw ConvergenceError(r.failure);
@@ -30,18 +27,16 @@ namespace ritr
   }
 
   template <int dim>
-  typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_start_of_step(const Eigen::VectorXd &u,
-                                                                            Eigen::VectorXd       &z,
-                                                                            const Eigen::VectorXd &z_start,
-                                                                            const Eigen::VectorXd &targets)
+  typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_start_of_step(const StepContext<dim> &step,
+                                                                            Eigen::VectorXd        &z)
   {
+    const Eigen::VectorXd &u = step.u_start;
     potential_.disable_adaptive_stiffness();
     unsigned int friction_iterations = 1;
     if (contact_)
       {
         reference_ = u;
         contact_->set_reference(u);
-        contact_->forget_candidates();
         const double diagonal = contact_->bbox_diagonal(z);
         if (settings_.barrier_stiffness > 0)
           contact_->set_stiffness(settings_.barrier_stiffness);
@@ -49,7 +44,7 @@ namespace ritr
           {
             const auto stiffness = contact::initial_barrier_stiffness(
               diagonal, settings_.dhat, bulk_.nodal_masses(u).mean(), potential_.bulk_gradient(z),
-              contact_->barrier_gradient(z));
+              contact_->barrier_gradient(z, contact_->candidates_at(z)));
             contact_->set_stiffness(stiffness.kappa);
             potential_.enable_adaptive_stiffness(stiffness.kappa_max, diagonal);
           }
@@ -59,11 +54,8 @@ namespace ritr
     for (unsigned int f = 0; f < friction_iterations; ++f)
       {
         if (contact_)
-          {
-            contact_->forget_candidates();
-            contact_->update_friction(z, z_start);
-          }
-        const Report r = solve_on_mesh(u, z, targets);
+          contact_->update_friction(z, contact_->candidates_at(z), step.z_start);
+        const Report r = solve_on_mesh(u, z, step.targets);
         report.iterations += r.iterations;
         report.line_search_trials += r.line_search_trials;
         report.energy = r.energy;

@@ -1,5 +1,5 @@
 #include <ritr/common/small_matrix.h>
-#include <ritr/transfer/simplex_quadrature.h>
+#include <ritr/common/simplex_quadrature.h>
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace ritr::transfer
+namespace ritr
 {
   template <int dim>
   SimplexQuadrature<dim> degree_two_rule()
@@ -133,4 +133,4 @@ namespace ritr::transfer
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)
 #undef RITR_INSTANTIATE
-} // namespace ritr::transfer
+} // namespace ritr

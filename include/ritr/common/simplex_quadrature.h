@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-namespace ritr::transfer
+namespace ritr
 {
   template <int dim>
   struct SimplexQuadrature
@@ -34,4 +34,4 @@ namespace ritr::transfer
   // sum to 1/dim! and every point's coordinates sum to one.
   template <int dim>
   void check_rule(const SimplexQuadrature<dim> &rule);
-} // namespace ritr::transfer
+} // namespace ritr

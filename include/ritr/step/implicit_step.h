@@ -7,7 +7,8 @@
 #include <ritr/contact/contact_potential.h>
 #include <ritr/elasticity/bulk_energy.h>
 #include <ritr/solver/newton.h>
-#include <ritr/time/incremental_potential.h>
+#include <ritr/step/incremental_potential.h>
+#include <ritr/step/step_context.h>
 
 #include <stdexcept>
 
@@ -42,11 +43,10 @@ namespace ritr
       double       energy = 0;
     };
 
-    // First solve of a step, on reference u: initialises the barrier stiffness at z (IPC's
-    // rule, adapted while Newton runs) and lags friction `friction_iterations` times, with
-    // slip measured from z_start. Throws ConvergenceError.
-    Report solve_start_of_step(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &z_start,
-                               const Eigen::VectorXd &targets);
+    // First solve of a step, on its start-of-step mesh: initialises the barrier stiffness at
+    // z (IPC's rule, adapted while Newton runs) and lags friction `friction_iterations`
+    // times, with slip measured from the start-of-step state. Throws ConvergenceError.
+    Report solve_start_of_step(const StepContext<dim> &step, Eigen::VectorXd &z);
     // Later solves of the same step on another reference u (r-adaptivity's trial meshes),
     // warm-started from z: the stiffness and lagged friction stay frozen, so that the
     // objective is one function across trials. `linear_term` (may be empty) adds l^T x.

@@ -1,0 +1,63 @@
+#pragma once
+// The problem a scene describes, built once before the first step: the mesh and its
+// materials, the rigid obstacles and their scripted motion, the Dirichlet conditions, the
+// contact potential (only when contact is on), and the initial state. make_problem() checks
+// everything that can be checked before a step runs, so that bad input fails here with an
+// InputError naming the .prm entry, never later as a failed step.
+#include <ritr/contact/contact_potential.h>
+#include <ritr/elasticity/bulk_energy.h>
+#include <ritr/scene/expression.h>
+#include <ritr/scene/scene.h>
+
+#include <array>
+#include <memory>
+#include <optional>
+
+namespace ritr
+{
+  template <int dim>
+  class Problem
+  {
+  public:
+    // Use make_problem(); the terms keep references to the mesh, so a problem never moves.
+    Problem(const Problem &) = delete;
+    Problem &operator=(const Problem &) = delete;
+
+    Scene                                    scene;
+    SimplexMesh<dim>                         mesh;
+    std::unique_ptr<BulkEnergy<dim>>         bulk;
+    std::vector<contact::RigidObstacle<dim>> obstacles;
+    std::unique_ptr<ContactPotential<dim>>   contact;  // empty when contact is off
+    std::vector<bool>                        kinematic;  // prescribed state entries
+
+    // The initial state: reference and deformed body nodes, their velocity, and the obstacle
+    // vertices (the state is z = [x, obstacle vertices]).
+    Eigen::VectorXd initial_reference, initial_positions, initial_velocity, initial_obstacle_positions;
+
+    // The prescribed state entries at time t (Dirichlet nodes, then obstacle vertices; other
+    // entries zero).
+    Eigen::VectorXd targets(double t) const;
+    // The body force per unit mass at time t, load factor applied.
+    std::array<double, dim> gravity(double t) const;
+
+  private:
+    Problem() = default;
+    template <int d>
+    friend std::unique_ptr<Problem<d>> make_problem(const Scene &scene);
+
+    void build_mesh_and_materials();
+    void set_initial_velocity();
+    void build_obstacles();
+    void build_dirichlet_conditions();
+    void build_contact();
+    void check_initial_state() const;
+
+    std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition
+    std::vector<Expression<dim>>                       dirichlet_displacements_;
+    std::optional<Expression<dim>>                     load_factor_;
+  };
+
+  // Builds and checks the problem of `scene`; throws InputError on bad input.
+  template <int dim>
+  std::unique_ptr<Problem<dim>> make_problem(const Scene &scene);
+} // namespace ritr

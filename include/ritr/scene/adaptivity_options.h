@@ -1,0 +1,49 @@
+#pragma once
+// The switches of r-adaptivity (section Adaptivity of a .prm file), typed. The paper's
+// ablations are the non-default values. The *_from() functions are the one mapping from
+// the names in a parameter file to these values; they throw std::invalid_argument for any
+// other name.
+#include <string>
+
+namespace ritr
+{
+  // The outer Hessian: `truncated` drops the implicit response of x like paper eq. 23, but
+  // takes d2R/du2 with x following u (ReferenceBlock::following): at fixed x it is three
+  // orders of magnitude stiffer than the reduced Hessian and the iteration stalls (Fig. 9
+  // rod). It is factorized with a diagonal shift where it is indefinite. `full` adds the
+  // implicit response of x, -H_ux H_xx^{-1} H_xu, and projects the result as a whole;
+  // `filtered` keeps only the entries of the response dx/du above a relative threshold.
+  // Both of the latter are dense: for small meshes and for comparison only.
+  enum class RitrHessian
+  {
+    truncated,
+    full,
+    filtered
+  };
+
+  enum class InertiaForm
+  {
+    corrected,   // eq. 10
+    uncorrected  // eq. 8 (ablation)
+  };
+
+  enum class PredictorProjection
+  {
+    in_optimization,    // eq. 6: pi_t applied at every candidate mesh
+    after_optimization  // ablation: nodal values kept during the solve, remapped afterwards
+  };
+
+  // Which admissibility conditions r-ITR keeps (paper 4.5, Fig. 8).
+  enum class Admissibility
+  {
+    none,
+    geometric,  // boundary sliding, measure barrier, step filter
+    physical,   // x = argmin E(., u) at every candidate mesh
+    both
+  };
+
+  RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered
+  InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected
+  PredictorProjection predictor_projection_from(const std::string &name);  // in-|after-optimization
+  Admissibility       admissibility_from(const std::string &name);         // none|geometric|physical|both
+} // namespace ritr

@@ -1,0 +1,36 @@
+#include <ritr/metrics/mesh_metrics.h>
+#include <ritr/time/invariants.h>
+
+namespace ritr
+{
+  template <int dim>
+  std::vector<std::string> InvariantChecker<dim>::check(StepResult &result) const
+  {
+    StepReport              &report = result.report;
+    const std::string        step   = "step " + std::to_string(report.step) + ": ";
+    std::vector<std::string> violations;
+    if (result.outer_stop)
+      {
+        if (!(report.energy <= report.initial_objective))
+          violations.push_back(step + "R above its start-of-step value");
+        if (!(report.sliding_violation <= 1e-8))
+          violations.push_back(step + "boundary sliding violation " + std::to_string(report.sliding_violation));
+      }
+    const Eigen::VectorXd x = result.z.head(result.u.size());
+    if (contact_)
+      report.min_distance = contact_->minimum_distance(result.z);
+    report.min_reference_measure = min_cell_measure(mesh_, result.u, false);
+    report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x, result.u);
+    if (!(report.min_distance > 0))
+      violations.push_back(step + "minimum distance " + std::to_string(report.min_distance));
+    if (!(report.min_reference_measure > 0))
+      violations.push_back(step + "inverted reference element");
+    if (!(report.min_deformed_jacobian > 0))
+      violations.push_back(step + "inverted element (det F = " + std::to_string(report.min_deformed_jacobian) + ")");
+    return violations;
+  }
+
+  template class InvariantChecker<1>;
+  template class InvariantChecker<2>;
+  template class InvariantChecker<3>;
+} // namespace ritr

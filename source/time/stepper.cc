@@ -1,0 +1,158 @@
+#include <ritr/common/input_error.h>
+#include <ritr/mesh/simplex_rules.h>
+#include <ritr/metrics/mesh_metrics.h>
+#include <ritr/time/stepper.h>
+
+#include <cmath>
+
+namespace ritr
+{
+  namespace
+  {
+    // The implicit step on the start-of-step mesh, the mesh kept.
+    template <int dim>
+    class FixedMeshStepper : public Stepper<dim>
+    {
+    public:
+      explicit FixedMeshStepper(std::unique_ptr<ImplicitStep<dim>> implicit_step)
+      {
+        this->implicit_step_ = std::move(implicit_step);
+      }
+
+      StepResult step(const StepContext<dim> &context) override
+      {
+        StepResult result;
+        result.u = context.u_start;
+        result.z = context.z_start;
+        try
+          {
+            const auto r = this->implicit_step_->solve_start_of_step(context, result.z);
+            result.report.newton_iterations  = r.iterations;
+            result.report.line_search_trials = r.line_search_trials;
+            result.report.energy             = r.energy;
+          }
+        catch (const ConvergenceError &e)
+          {
+            throw ConvergenceError("step " + std::to_string(context.step) + " (t = " + std::to_string(context.time) +
+                                   ") did not converge: " + e.what());
+          }
+        const Eigen::VectorXd x = result.z.head(context.u_start.size());
+        result.v = context.dynamic ? Eigen::VectorXd((x - context.x_start()) / context.time_step) :
+                                     Eigen::VectorXd::Zero(x.size());
+        return result;
+      }
+    };
+
+    // Optimal r-adaptive in-timestep remeshing: the mesh moves within the step.
+    template <int dim>
+    class RitrStepper : public Stepper<dim>
+    {
+    public:
+      RitrStepper(std::unique_ptr<ImplicitStep<dim>> implicit_step, std::unique_ptr<RitrSolver<dim>> solver)
+        : solver_(std::move(solver))
+      {
+        this->implicit_step_ = std::move(implicit_step);
+      }
+
+      StepResult step(const StepContext<dim> &context) override
+      {
+        typename RitrSolver<dim>::Result r;
+        try
+          {
+            r = solver_->step(context);
+          }
+        catch (const ConvergenceError &e)
+          {
+            throw ConvergenceError("step " + std::to_string(context.step) + ": " + e.what());
+          }
+        StepResult result;
+        result.u                          = r.u;
+        result.z                          = r.z;
+        result.v                          = r.v;
+        result.outer_stop                 = r.stop;
+        result.report.energy              = r.objective;
+        result.report.initial_objective   = r.initial_objective;
+        result.report.sliding_violation   = r.sliding_violation;
+        result.report.newton_iterations   = r.inner_iterations;
+        result.report.outer_iterations    = r.outer_iterations;
+        result.report.line_search_trials  = r.line_search_trials;
+        result.report.inner_seconds       = r.inner_seconds;
+        result.report.transfer_seconds    = r.transfer_seconds;
+        result.report.outer_solve_seconds = r.outer_solve_seconds;
+        return result;
+      }
+
+    private:
+      // Owned here, but built on the implicit step above: destroyed first.
+      std::unique_ptr<RitrSolver<dim>> solver_;
+    };
+
+    template <int dim>
+    RitrSettings ritr_settings(const Problem<dim> &problem)
+    {
+      const AdaptivityScene &a = problem.scene.adaptivity;
+      RitrSettings           settings;
+      settings.hessian                 = a.hessian;
+      settings.inertia                 = a.inertia;
+      settings.projection              = a.projection;
+      settings.geometric_admissibility = a.admissibility == Admissibility::geometric || a.admissibility == Admissibility::both;
+      settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
+      settings.sliding_tolerance         = a.sliding_tolerance;
+      settings.max_outer_iterations      = a.max_iterations;
+      settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
+      // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
+      settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);
+      return settings;
+    }
+  } // namespace
+
+  template <int dim>
+  std::unique_ptr<Stepper<dim>> make_stepper(Problem<dim> &problem, const NewtonMonitor &monitor)
+  {
+    const Scene &scene = problem.scene;
+    ContactPotential<dim> *contact = problem.contact.get();
+    ImplicitStepSettings step_settings;
+    step_settings.newton.max_iterations = scene.solver.max_iterations;
+    step_settings.newton.projection =
+      scene.solver.exact_hessian ? HessianProjection::never : HessianProjection::always;
+    // Both tolerances are relative to the bodies' size, so that a scene means the same in any
+    // unit; obstacles (a ground plane may be any size) do not count.
+    const double length = bounding_box_diagonal<dim>(problem.initial_reference);
+    step_settings.newton.tolerance = scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step * length :
+                                                       scene.solver.static_tolerance * length;
+    step_settings.friction_iterations =
+      contact && scene.contact.friction_coefficient > 0 ? scene.contact.friction_iterations : 1;
+    step_settings.barrier_stiffness = scene.contact.barrier_stiffness;
+    step_settings.dhat              = scene.contact.dhat;
+    step_settings.newton.monitor    = monitor;
+    auto implicit_step = std::make_unique<ImplicitStep<dim>>(*problem.bulk, contact, problem.kinematic, step_settings);
+    if (!scene.adaptivity.enabled)
+      return std::make_unique<FixedMeshStepper<dim>>(std::move(implicit_step));
+
+    const RitrSettings settings = ritr_settings(problem);
+    // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
+    // integrand (kinks inside candidate cells) far better than low-order rules. A rod's cells
+    // are cheap, so there the rule is repeated on sub-cells by default.
+    const unsigned int subdivisions = scene.adaptivity.quadrature_subdivisions > 0 ?
+                                        scene.adaptivity.quadrature_subdivisions :
+                                        (dim == 1 ? 64 : 1);
+    std::unique_ptr<RitrSolver<dim>> solver;
+    try
+      {
+        solver = std::make_unique<RitrSolver<dim>>(problem.mesh, *problem.bulk, contact, *implicit_step, settings,
+                                                   composite_rule(witherden_vincent_rule<dim>(5), subdivisions));
+      }
+    catch (const std::invalid_argument &e)
+      {
+        throw InputError(scene.where("Adaptivity/enabled") + ": " + e.what());
+      }
+    if (!settings.physical_admissibility && contact)
+      throw InputError(scene.where("Adaptivity/admissibility") +
+                       ": without physical admissibility contact is not supported");
+    return std::make_unique<RitrStepper<dim>>(std::move(implicit_step), std::move(solver));
+  }
+
+  template std::unique_ptr<Stepper<1>> make_stepper<1>(Problem<1> &, const NewtonMonitor &);
+  template std::unique_ptr<Stepper<2>> make_stepper<2>(Problem<2> &, const NewtonMonitor &);
+  template std::unique_ptr<Stepper<3>> make_stepper<3>(Problem<3> &, const NewtonMonitor &);
+} // namespace ritr
