@@ -113,7 +113,7 @@ namespace ritr
       prm.declare_entry("newton tolerance", "1e-5", Patterns::Double(0), "Dynamics: stop when |dx|_inf / h < this times the bodies' bounding-box diagonal (eps_e, velocity relative to the scene's size).");
       prm.declare_entry("static tolerance", "1e-8", Patterns::Double(0), "Statics: stop when |dx|_inf < this times the bodies' bounding-box diagonal.");
       prm.declare_entry("max iterations", "200", Patterns::Integer(1), "Newton iterations per solve before the run stops (exit code 3).");
-      prm.declare_entry("hessian projection", "always", Patterns::Selection("always|never"), "always: projected Newton (every element and contact stencil's Hessian projected onto the PSD cone, as in IPC; it converges only linearly where the projected Hessian differs much from the exact one, as under a sharp punch on a fine mesh); never: the exact Hessian, shifted by a multiple of the identity where it is not positive definite (quadratic convergence there, but its steps run into contact and get cut back by CCD: slower or failing on dynamic contact scenes).");
+      prm.declare_entry("hessian projection", "adaptive", Patterns::Selection("always|never|adaptive"), "always: projected Newton (every element and contact stencil's Hessian projected onto the PSD cone, as in IPC; it converges only linearly where the projected Hessian differs much from the exact one, as under a sharp punch on a fine mesh); never: the exact Hessian, shifted by a multiple of the identity where it is not positive definite (quadratic convergence there, but its steps run into contact and get cut back by CCD: slower or failing on dynamic contact scenes); adaptive: projected Newton until five full steps in a row fail to halve, then the exact Hessian (back to projected if an exact step's line search fails).");
       prm.declare_entry("threads", "0", Patterns::Integer(0), "Assembly threads (0: all cores).");
       prm.declare_entry("newton log", "false", Patterns::Bool(), "Also write newton.csv: one row per Newton iteration (energy, step and gradient norms, predicted decrease, CCD bound, accepted step, barrier stiffness, closest active distance), for diagnosing slow or failed solves.");
       prm.leave_subsection();
@@ -372,7 +372,10 @@ namespace ritr
       s.solver.max_iterations   = prm.get_integer("max iterations");
       s.solver.threads          = prm.get_integer("threads");
       s.solver.newton_log       = prm.get_bool("newton log");
-      s.solver.exact_hessian    = prm.get("hessian projection") == "never";
+      const std::string projection = prm.get("hessian projection");
+      s.solver.hessian_projection  = projection == "never"    ? HessianProjection::never :
+                                     projection == "adaptive" ? HessianProjection::adaptive :
+                                                                HessianProjection::always;
       prm.leave_subsection();
       return s;
     }

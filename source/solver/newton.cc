@@ -41,6 +41,10 @@ namespace ritr
     Triplets        h;
     Eigen::SparseMatrix<double> reduced(n_free, n_free);
     Triplets                    reduced_triplets;
+    // Adaptive projection: projected Newton until it crawls, then the exact Hessian.
+    bool         exact           = settings.projection == HessianProjection::never;
+    unsigned int crawling        = 0;
+    double       last_full_step  = std::numeric_limits<double>::infinity();
 
     for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations)
       {
@@ -54,7 +58,7 @@ namespace ritr
         g.setZero();
         objective.gradient(z, g);
         h.clear();
-        objective.hessian(z, h, settings.projection == HessianProjection::always);
+        objective.hessian(z, h, !exact);
 
         // Prescribed part of the step, then the free part from
         // H_ff dz_f = -g_f - H_fk dz_k.
@@ -95,7 +99,10 @@ namespace ritr
 
         result.last_step_norm = dz.lpNorm<Eigen::Infinity>();
         result.energy         = e0;
-        if (!kinematic_pending && result.last_step_norm <= settings.tolerance)
+        // A step from a shifted Hessian is small because of the shift, not because z is near
+        // the minimum (the barrier's negative curvature at tiny gaps forces huge shifts): it
+        // does not count as converged.
+        if (!kinematic_pending && result.last_step_norm <= settings.tolerance && !(exact && shift > 0))
           {
             result.converged = true;
             return result;
@@ -125,6 +132,8 @@ namespace ritr
                     result.converged = true;
                     return result;
                   }
+                if (exact && settings.projection == HessianProjection::adaptive)
+                  break;  // back to projected Newton below, from the same z
                 result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
                 return result;
               }
@@ -151,6 +160,12 @@ namespace ritr
             if (free_norm(trial_gradient, free_index) < gradient_norm)
               break;
           }
+        if (alpha < settings.min_step)
+          {
+            exact    = false;
+            crawling = 0;
+            continue;
+          }
         z = trial;
         // Kinematic entries that reached their target are snapped exactly.
         if (alpha == 1.0)
@@ -159,8 +174,17 @@ namespace ritr
               z[i] = targets[i];
         if (settings.monitor)
           settings.monitor({result.iterations, e0, trial_energy - e0, decrease, result.last_step_norm,
-                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift},
+                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift, exact},
                            z);
+        // Full steps whose length does not shrink: the projected Hessian is a poor model of the
+        // energy here and Newton has become linear; the exact Hessian restores quadratic steps.
+        if (settings.projection == HessianProjection::adaptive && !exact)
+          {
+            const bool full_step = !kinematic_pending && alpha == 1.0;
+            crawling = full_step && result.last_step_norm > 0.5 * last_full_step ? crawling + 1 : 0;
+            last_full_step = full_step ? result.last_step_norm : std::numeric_limits<double>::infinity();
+            exact = crawling >= settings.crawl_iterations;
+          }
       }
     result.failure = "no convergence in " + std::to_string(settings.max_iterations) + " Newton iterations";
     return result;

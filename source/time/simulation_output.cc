@@ -185,6 +185,7 @@ namespace ritr
       << record.energy << std::setprecision(6) << ',' << record.energy_change << ',' << record.predicted_decrease
       << ',' << record.step_norm << ',' << record.gradient_norm << ',' << record.ccd_bound << ',' << record.alpha
       << ',' << record.prescribed_moving << ',' << record.judged_by_gradient << ',' << record.hessian_shift << ','
+      << record.exact_hessian << ','
       << (contact_ ? contact_->stiffness() : 0.0) << ','
       << (contact_ ? contact_->active_minimum_distance(z, contact_->candidates_at(z)) : std::numeric_limits<double>::infinity()) << '\n';
   }
@@ -211,7 +212,7 @@ namespace ritr
                      "min_deformed_jacobian,inner_solve_seconds,transfer_seconds,outer_solve_seconds,"
                      "wall_seconds\n";
     outputs_->newton_log << "step,solve,iteration,energy,energy_change,predicted_decrease,step_norm,"
-                            "gradient_norm,ccd_bound,alpha,prescribed_moving,judged_by_gradient,hessian_shift,"
+                            "gradient_norm,ccd_bound,alpha,prescribed_moving,judged_by_gradient,hessian_shift,exact_hessian,"
                             "barrier_stiffness,min_active_distance\n";
     write_summary(0, false);
     remove_previous_outputs(outputs_->directory);

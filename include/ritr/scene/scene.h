@@ -5,6 +5,7 @@
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
 #include <ritr/scene/adaptivity_options.h>
+#include <ritr/solver/hessian_projection.h>
 
 #include <map>
 #include <string>
@@ -78,7 +79,7 @@ namespace ritr
     unsigned int max_iterations   = 200;
     unsigned int threads          = 0;  // 0: all cores
     bool         newton_log       = false;  // newton.csv: one row per Newton iteration
-    bool         exact_hessian    = false;  // Newton with the shifted exact Hessian, not projected
+    HessianProjection hessian_projection = HessianProjection::adaptive;
   };
 
   struct Scene

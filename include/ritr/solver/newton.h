@@ -5,6 +5,7 @@
 // detection sees their motion too. Armijo backtracking starts from the largest step that
 // CCD certifies as intersection-free; where the predicted decrease is below the energy's
 // round-off, a trial is accepted when it lowers the norm of the free gradient instead.
+#include <ritr/solver/hessian_projection.h>
 #include <ritr/solver/sparse_cholesky.h>
 
 #include <Eigen/Sparse>
@@ -51,17 +52,7 @@ namespace ritr
     bool         prescribed_moving  = false;  // kinematic entries not yet at their targets
     bool         judged_by_gradient = false;  // step below the energy's round-off
     double       hessian_shift      = 0;  // multiple of the identity added to make it definite
-  };
-
-  // Which Hessian a Newton step solves with. Projecting every element and contact stencil
-  // onto the PSD cone (IPC's projected Newton) gives a descent direction that rarely runs
-  // into contact, but a different model of the energy wherever stencils are indefinite: near
-  // a sharp punch corner Newton then crawls linearly for thousands of iterations, where the
-  // exact Hessian converges quadratically -- and fails elsewhere (doc/method.md).
-  enum class HessianProjection
-  {
-    always,  // projected Newton
-    never    // exact Hessian, shifted by a multiple of the identity where indefinite
+    bool         exact_hessian      = false;  // the step solved with the exact Hessian
   };
 
   struct NewtonSettings
@@ -71,6 +62,7 @@ namespace ritr
     double       armijo         = 1e-4;
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
     HessianProjection projection = HessianProjection::always;
+    unsigned int crawl_iterations = 5;  // adaptive: full, non-shrinking steps before switching
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
   };

@@ -1,0 +1,17 @@
+#pragma once
+
+namespace ritr
+{
+  // Which Hessian a Newton step solves with. Projecting every element and contact stencil
+  // onto the PSD cone (IPC's projected Newton) gives a descent direction that rarely runs
+  // into contact, but a different model of the energy wherever stencils are indefinite: near
+  // a sharp punch corner Newton then crawls linearly for thousands of iterations, where the
+  // exact Hessian converges quadratically -- and fails elsewhere (doc/method.md).
+  enum class HessianProjection
+  {
+    always,   // projected Newton
+    never,    // exact Hessian, shifted by a multiple of the identity where indefinite
+    adaptive  // projected until full steps stop shrinking, then exact; projected again if
+              // an exact step's line search fails
+  };
+} // namespace ritr
