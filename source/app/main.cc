@@ -6,28 +6,44 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace
 {
   void print_usage(std::ostream &out)
   {
-    out << "usage: ritr SCENE.prm          run a scene (outputs go to its 'output directory')\n"
+    out << "usage: ritr SCENE.prm           run a scene (outputs go to its 'output directory')\n"
+           "       ritr SCENE.prm --resume  continue a stopped run of the scene from the last\n"
+           "                                checkpoint.bin in its output directory\n"
            "       ritr --print-parameters  every parameter with its documentation and default\n"
            "       ritr --help\n"
-           "exit codes: 0 done, 2 bad input, 3 a step did not converge\n";
+           "exit codes: 0 done (or nothing left to resume), 2 bad input or no usable checkpoint,\n"
+           "            3 a step did not converge\n";
   }
 
   template <int dim>
-  void run(const ritr::Scene &scene)
+  void run(const ritr::Scene &scene, const bool resume)
   {
     ritr::Simulation<dim> simulation(scene);
-    std::cout << "ritr: " << scene.parameter_file << ": " << dim << "D " << scene.mode << ", "
-              << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
-              << scene.n_steps() << " steps -> " << scene.output_directory << std::endl;
-    simulation.run();
+    // A resumed run says where it resumes once its checkpoint has passed the checks, so that
+    // a refused checkpoint stays a one-line error.
+    if (!resume)
+      {
+        std::cout << "ritr: " << scene.parameter_file << ": " << dim << "D " << scene.mode << ", "
+                  << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
+                  << scene.n_steps() << " steps -> " << scene.output_directory << std::endl;
+        simulation.run();
+      }
+    else if (!simulation.resume())
+      {
+        std::cout << "ritr: the run in " << scene.output_directory << " is already complete; nothing to resume"
+                  << std::endl;
+        return;
+      }
     std::cout << "ritr: done; results in " << scene.output_directory
               << " (solution.pvd, reference.pvd, log.csv, summary.json)" << std::endl;
   }
@@ -35,12 +51,17 @@ namespace
 
 int main(int argc, char **argv)
 {
-  if (argc != 2)
+  std::vector<std::string> arguments(argv + 1, argv + argc);
+  const auto resume_flag = std::find(arguments.begin(), arguments.end(), "--resume");
+  const bool resume      = resume_flag != arguments.end();
+  if (resume)
+    arguments.erase(resume_flag);
+  if (arguments.size() != 1 || (resume && arguments[0].rfind("--", 0) == 0))
     {
       print_usage(std::cerr);
       return 2;
     }
-  const std::string argument = argv[1];
+  const std::string argument = arguments[0];
   if (argument == "--help" || argument == "-h")
     {
       print_usage(std::cout);
@@ -60,9 +81,9 @@ int main(int argc, char **argv)
                                                         scene.solver.threads);
       switch (scene.dimension)
         {
-          case 1: run<1>(scene); break;
-          case 2: run<2>(scene); break;
-          default: run<3>(scene); break;
+          case 1: run<1>(scene, resume); break;
+          case 2: run<2>(scene, resume); break;
+          default: run<3>(scene, resume); break;
         }
     }
   catch (const ritr::InputError &e)

@@ -10,7 +10,7 @@ namespace ritr
   {
     const std::string temporary = path + ".tmp";
     {
-      std::ofstream out(temporary);
+      std::ofstream out(temporary, std::ios::binary);
       if (!out)
         throw std::runtime_error("cannot write '" + path + "'");
       out.precision(17);

@@ -100,6 +100,17 @@ namespace ritr
   void PvdCollection::add(const double time, const std::string &file)
   {
     entries_.emplace_back(time, file);
+    write();
+  }
+
+  void PvdCollection::assign(std::vector<std::pair<double, std::string>> entries)
+  {
+    entries_ = std::move(entries);
+    write();
+  }
+
+  void PvdCollection::write() const
+  {
     write_file_atomically(path_, [&](std::ostream &out) {
       // Full precision: runs are paired frame by frame on these times (ritr-compare).
       out << std::setprecision(17);

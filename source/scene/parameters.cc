@@ -407,7 +407,17 @@ namespace ritr
         prm.parse_input(text, file, "", false);
         if (!scene_file.sets_an_entry)
           throw InputError(file + ": sets no entry (an empty scene would run every default)");
-        return validated_scene(prm, scene_file, file);
+        Scene scene = validated_scene(prm, scene_file, file);
+        // Where the outputs go and how many threads assemble do not change the results: a
+        // moved output directory resumes, and so does a run on another machine.
+        prm.set("output directory", "");
+        prm.enter_subsection("Solver");
+        prm.set("threads", "0");
+        prm.leave_subsection();
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::OutputStyle::ShortPRM);
+        scene.parameter_listing = listing.str();
+        return scene;
       }
     catch (const InputError &)
       {

@@ -27,6 +27,7 @@ namespace ritr
         log_newton_iteration(record, z);
       };
     stepper_ = make_stepper(*problem_, monitor);
+    scene_hash_ = scene_fingerprint();
   }
 
   template <int dim>

@@ -20,13 +20,6 @@ namespace ritr
   namespace
   {
 
-    std::string numbered(const std::string &stem, const unsigned int n, const std::string &ext)
-    {
-      std::ostringstream s;
-      s << stem << '-' << std::setw(5) << std::setfill('0') << n << ext;
-      return s.str();
-    }
-
     std::string json_string(const std::string &text)
     {
       std::ostringstream s;
@@ -51,7 +44,7 @@ namespace ritr
     // Writes STEM-NNNNN.vtu and lists it in its collection; the time goes to output_seconds.
     const auto write_piece = [&](const std::string &stem, const VtuPiece &p, PvdCollection &collection) {
       ScopedTimer       timer(out.output_seconds);
-      const std::string file = numbered(stem, step, ".vtu");
+      const std::string file = numbered_output(stem, step, ".vtu");
       write_vtu((dir / file).string(), p);
       collection.add(time_, file);
     };
@@ -104,7 +97,7 @@ namespace ritr
       }
 
     if (scene_.write_nodal_csv)
-      write_file_atomically((dir / numbered("nodes", step, ".csv")).string(), [&](std::ostream &s) {
+      write_file_atomically((dir / numbered_output("nodes", step, ".csv")).string(), [&](std::ostream &s) {
         const char *axes = "xyz";
         s << "id";
         for (const char *q : {"u", "x", "v"})
@@ -151,9 +144,12 @@ namespace ritr
         << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
         << "  \"total_wall_seconds\": " << total_seconds << ",\n"
         << "  \"wall_seconds_per_step\": " << total_seconds / std::max<std::size_t>(1, history_.size()) << ",\n"
-        << "  \"linear_solve_seconds\": " << newton_solver().seconds_in_linear_solves() << ",\n"
-        << "  \"symbolic_factorizations\": " << newton_solver().linear_solver().n_symbolic_analyses() << ",\n"
-        << "  \"numeric_factorizations\": " << newton_solver().linear_solver().n_factorizations() << ",\n"
+        << "  \"linear_solve_seconds\": " << earlier_.linear_solve_seconds + newton_solver().seconds_in_linear_solves()
+        << ",\n"
+        << "  \"symbolic_factorizations\": "
+        << earlier_.symbolic_factorizations + newton_solver().linear_solver().n_symbolic_analyses() << ",\n"
+        << "  \"numeric_factorizations\": "
+        << earlier_.numeric_factorizations + newton_solver().linear_solver().n_factorizations() << ",\n"
         << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
         << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
         << "  \"total_newton_iterations\": " << newton << ",\n"
@@ -191,18 +187,20 @@ namespace ritr
   }
 
   template <int dim>
-  void Simulation<dim>::run()
+  bool Simulation<dim>::writes_frame(const unsigned int step) const
   {
-    const auto flush_log = [&] {
-      write_file_atomically((outputs_->directory / "log.csv").string(),
-                            [&](std::ostream &s) { s << outputs_->log.str(); });
-      if (scene_.solver.newton_log)
-        write_file_atomically((outputs_->directory / "newton.csv").string(),
-                              [&](std::ostream &s) { s << outputs_->newton_log.str(); });
-    };
-    // From here on the directory belongs to this run (the scene has been validated): its
-    // summary says "complete": false until the end, and nothing of a previous run stays.
-    std::filesystem::create_directories(scene_.output_directory);
+    return step % scene_.output_every == 0 || step == scene_.n_steps();
+  }
+
+  template <int dim>
+  double Simulation<dim>::wall_seconds() const
+  {
+    return earlier_.wall_seconds + seconds_since(start_);
+  }
+
+  template <int dim>
+  void Simulation<dim>::create_outputs()
+  {
     outputs_ = std::make_unique<RunOutputs>(scene_.output_directory);
     // Twelve digits: energies of refinement rungs are compared with each other, and six
     // digits (the stream default) hid differences of 1e-6 relative.
@@ -214,40 +212,76 @@ namespace ritr
     outputs_->newton_log << "step,solve,iteration,energy,energy_change,predicted_decrease,step_norm,"
                             "gradient_norm,ccd_bound,alpha,prescribed_moving,judged_by_gradient,hessian_shift,exact_hessian,"
                             "barrier_stiffness,min_active_distance\n";
+  }
+
+  template <int dim>
+  void Simulation<dim>::append_log_row(const StepReport &r)
+  {
+    outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
+                  << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
+                  << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
+                  << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.inner_seconds << ','
+                  << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds << '\n';
+  }
+
+  template <int dim>
+  void Simulation<dim>::flush_logs() const
+  {
+    write_file_atomically((outputs_->directory / "log.csv").string(),
+                          [&](std::ostream &s) { s << outputs_->log.str(); });
+    if (scene_.solver.newton_log)
+      write_file_atomically((outputs_->directory / "newton.csv").string(),
+                            [&](std::ostream &s) { s << outputs_->newton_log.str(); });
+  }
+
+  template <int dim>
+  void Simulation<dim>::run()
+  {
+    // From here on the directory belongs to this run (the scene has been validated): its
+    // summary says "complete": false until the end, and nothing of a previous run stays.
+    std::filesystem::create_directories(scene_.output_directory);
+    create_outputs();
     write_summary(0, false);
     remove_previous_outputs(outputs_->directory);
-    flush_log();
+    flush_logs();
     write_step_output(0);
-    const unsigned int n_steps = scene_.n_steps();
-    const auto         start   = std::chrono::steady_clock::now();
+    start_ = std::chrono::steady_clock::now();
+    write_checkpoint();
+    run_steps();
+  }
+
+  template <int dim>
+  void Simulation<dim>::run_steps()
+  {
+    const unsigned int n_steps    = scene_.n_steps();
+    const unsigned int first_step = step_;
     try
       {
         while (step_ < n_steps)
           {
             const StepReport r = advance();
-            outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
-                          << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
-                          << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
-                          << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.inner_seconds
-                          << ',' << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds
-                          << '\n';
-            flush_log();
-            if (step_ % scene_.output_every == 0 || step_ == n_steps)
-              write_step_output(step_);
-            const double elapsed = seconds_since(start);
+            append_log_row(r);
+            flush_logs();
+            // The checkpoint comes last: every file it accounts for is in place before it.
+            if (writes_frame(step_))
+              {
+                write_step_output(step_);
+                write_checkpoint();
+              }
+            const double elapsed = seconds_since(start_);
             std::cout << "step " << r.step << '/' << n_steps << "  t=" << std::setprecision(4) << r.time
                       << "  newton=" << r.newton_iterations << "  E=" << std::setprecision(6) << r.energy
-                      << "  elapsed=" << std::setprecision(3) << elapsed << "s  eta="
-                      << elapsed / r.step * (n_steps - r.step) << "s" << std::endl;
+                      << "  elapsed=" << std::setprecision(3) << wall_seconds() << "s  eta="
+                      << elapsed / (r.step - first_step) * (n_steps - r.step) << "s" << std::endl;
           }
       }
     catch (const ConvergenceError &e)
       {
-        flush_log();  // newton.csv then shows the iterations of the failed step
-        write_summary(seconds_since(start), false, e.what());
+        flush_logs();  // newton.csv then shows the iterations of the failed step
+        write_summary(wall_seconds(), false, e.what());
         throw;
       }
-    write_summary(seconds_since(start), true);
+    write_summary(wall_seconds(), true);
   }
 
   template class Simulation<1>;

@@ -11,9 +11,12 @@
 namespace ritr
 {
   // Whether `name` is a file that a run writes, or its temporary (NAME.tmp): summary.json,
-  // log.csv, newton.csv, the .pvd collections, solution-/reference-/obstacles-NNNNN.vtu,
-  // nodes-NNNNN.csv.
+  // log.csv, newton.csv, checkpoint.bin, the .pvd collections,
+  // solution-/reference-/obstacles-NNNNN.vtu, nodes-NNNNN.csv.
   bool is_run_output(const std::string &name);
+
+  // STEM-NNNNN.EXT: the file of step n (five digits at least).
+  std::string numbered_output(const std::string &stem, unsigned int n, const std::string &extension);
 
   // Why `directory` cannot hold a run's outputs ("" when it can); touches nothing.
   std::string output_directory_problem(const std::filesystem::path &directory);
@@ -39,4 +42,9 @@ namespace ritr
   // new run has already replaced. The .pvd collections go first, so that none names a
   // removed file.
   void remove_previous_outputs(const std::filesystem::path &directory);
+
+  // A resumed run's clean-up: removes the per-frame files of steps after `step` (a killed
+  // run wrote them past its last checkpoint; the resumed run writes them again) and stale
+  // temporaries. Call it once the .pvd collections no longer name those files.
+  void remove_outputs_after(const std::filesystem::path &directory, unsigned int step);
 } // namespace ritr

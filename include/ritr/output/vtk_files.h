@@ -33,8 +33,12 @@ namespace ritr
   public:
     explicit PvdCollection(std::string path) : path_(std::move(path)) {}
     void add(double time, const std::string &file);  // appends and rewrites the collection
+    // Replaces the entries and rewrites the collection (a resumed run's frames so far).
+    void assign(std::vector<std::pair<double, std::string>> entries);
 
   private:
+    void write() const;
+
     std::string                                 path_;
     std::vector<std::pair<double, std::string>> entries_;
   };

@@ -105,6 +105,10 @@ namespace ritr
 
     // The line of each entry set in the parameter file ("Body 0/radius" -> 12).
     std::map<std::string, unsigned int> entry_lines;
+    // Every entry's value as parsed, one per line, but for the output directory and the
+    // thread count: what makes two scenes the same run (checkpoints refuse another scene's),
+    // whatever the file's comments and layout.
+    std::string parameter_listing;
 
     bool dynamic() const { return mode == "dynamic"; }
     unsigned int n_steps() const;

@@ -1,12 +1,15 @@
 #pragma once
 // A simulation run: the time (or load) loop. The problem comes from make_problem(), each
 // step from a Stepper (fixed mesh or r-adaptive), the checks after it from the
-// InvariantChecker; the outputs of the output contract are written after every step.
+// InvariantChecker; the outputs of the output contract are written after every step, and
+// with every VTU frame a checkpoint that resume() continues from.
 #include <ritr/output/run_directory.h>
 #include <ritr/problem/problem.h>
 #include <ritr/time/invariants.h>
 #include <ritr/time/stepper.h>
 
+#include <chrono>
+#include <cstdint>
 #include <memory>
 
 namespace ritr
@@ -21,6 +24,12 @@ namespace ritr
 
     // Runs all steps and writes the outputs; throws ConvergenceError.
     void run();
+
+    // Continues the run in the scene's output directory from its checkpoint.bin, writing the
+    // outputs as run() does, as if it had never stopped. Returns false, touching nothing,
+    // when that run is already complete. Throws InputError, touching nothing, when there is
+    // no checkpoint or it is damaged or of another scene; ConvergenceError as run().
+    bool resume();
 
     // Single step, for tests and drivers that inspect the state between steps.
     StepReport advance();
@@ -40,7 +49,21 @@ namespace ritr
 
   private:
     Eigen::VectorXd state() const;  // z = [x, obstacle vertices]
+    // The steps that write VTU frames and a checkpoint: the first and last, every `output every`.
+    bool writes_frame(unsigned int step) const;
     void write_step_output(unsigned int step);
+    // The time loop from step_ to the end, with its outputs; throws ConvergenceError.
+    void run_steps();
+    // RunOutputs for the scene's directory, its CSV files holding their headers.
+    void create_outputs();
+    void append_log_row(const StepReport &r);
+    void flush_logs() const;
+    // checkpoint.bin for the state after step_ (simulation_resume.cc).
+    void write_checkpoint() const;
+    // Identifies the scene a checkpoint belongs to: its parameters and its initial mesh.
+    std::uint64_t scene_fingerprint() const;
+    // Wall time of the run so far, over every process that ran a part of it.
+    double wall_seconds() const;
     // A row of newton.csv (Solver/newton log); rows are numbered by step and by solve.
     void log_newton_iteration(const NewtonIterationRecord &record, const Eigen::VectorXd &z);
     // summary.json; `complete` only when every step is done, `failure` says why not.
@@ -62,5 +85,13 @@ namespace ritr
     std::vector<std::string>                   invariant_violations_;
     std::unique_ptr<RunOutputs>                outputs_;
     unsigned int                               logged_step_ = 0, logged_solve_ = 0;
+    std::uint64_t                              scene_hash_ = 0;  // scene_fingerprint()
+    // When this process started stepping, and what the processes before it spent (resume()).
+    std::chrono::steady_clock::time_point      start_ = std::chrono::steady_clock::now();
+    struct
+    {
+      double        wall_seconds = 0, linear_solve_seconds = 0;
+      std::uint64_t symbolic_factorizations = 0, numeric_factorizations = 0;
+    } earlier_;
   };
 } // namespace ritr

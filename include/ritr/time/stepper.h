@@ -7,34 +7,14 @@
 #include <ritr/solver/newton.h>
 #include <ritr/step/implicit_step.h>
 #include <ritr/step/step_context.h>
+#include <ritr/time/step_report.h>
 
-#include <limits>
 #include <memory>
 
 namespace ritr
 {
   // Sees every Newton iteration of an implicit step (newton.csv).
   using NewtonMonitor = decltype(NewtonSettings::monitor);
-
-  // What one step did, for log.csv and the progress line.
-  struct StepReport
-  {
-    unsigned int step = 0;
-    double       time = 0;
-    double       energy = 0;
-    unsigned int newton_iterations = 0;
-    unsigned int outer_iterations  = 0;
-    unsigned int line_search_trials = 0;
-    // r-adaptivity: R at the step's start mesh (the step never ends above it), the boundary
-    // sliding violation and the time split between inner solves, transfer and outer solves.
-    double       initial_objective = 0;
-    double       sliding_violation = 0;
-    double       inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
-    double       min_distance = std::numeric_limits<double>::infinity();
-    double       min_reference_measure = 0;
-    double       min_deformed_jacobian = 0;
-    double       wall_seconds = 0;
-  };
 
   // Where a step ended, and how it got there.
   struct StepResult

@@ -1,0 +1,42 @@
+#pragma once
+// checkpoint.bin: what a run carries from one step to the next, written with every VTU frame
+// so that `ritr SCENE.prm --resume` continues a killed run from its last frame. Doubles are
+// stored raw, so a resumed run repeats the uninterrupted one bit for bit; a checksum catches
+// torn or damaged files, and the file is written atomically like every other output.
+#include <ritr/time/step_report.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ritr
+{
+  struct Checkpoint
+  {
+    unsigned int  dimension  = 0;
+    std::uint64_t scene_hash = 0;  // fingerprint of the scene (see Simulation::resume)
+    unsigned int  step       = 0;  // steps done
+    double        time       = 0;
+    // The state: reference and deformed body nodes, their velocity, the obstacle vertices.
+    Eigen::VectorXd u, x, v, obstacle_positions;
+    // One report per step done: log.csv is rewritten from them, summary.json adds them up.
+    std::vector<StepReport>  history;
+    std::vector<std::string> invariant_violations;
+    // Totals of summary.json that no step report holds, over the run so far.
+    double        wall_seconds = 0, output_seconds = 0, linear_solve_seconds = 0;
+    std::uint64_t symbolic_factorizations = 0, numeric_factorizations = 0;
+  };
+
+  // Writes `checkpoint` to `path` atomically (temporary name, then rename).
+  void write_checkpoint(const std::string &path, const Checkpoint &checkpoint);
+
+  // Reads a checkpoint; throws InputError naming the file and what is wrong with it (missing,
+  // not a checkpoint, another format version, truncated, corrupted).
+  Checkpoint read_checkpoint(const std::string &path);
+
+  // 64-bit FNV-1a of `bytes` bytes, continuing from `hash` (fingerprints, not security).
+  std::uint64_t fnv1a(const void *data, std::size_t bytes, std::uint64_t hash = 14695981039346656037ull);
+} // namespace ritr

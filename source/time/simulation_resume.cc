@@ -1,0 +1,167 @@
+// Checkpoints and resuming: a run killed between two frames continues from the last
+// checkpoint as if it had never stopped. The checkpoint holds what carries over from one
+// step to the next -- the state (u, x, v, obstacle vertices), the step and time, the step
+// reports and invariant violations that log.csv and summary.json are made of, and the run's
+// totals. Nothing else does: every solver setting of a step (barrier stiffness, lagged
+// friction, the transfer's old mesh) is initialised from the start-of-step state.
+#include <ritr/common/input_error.h>
+#include <ritr/common/wall_clock.h>
+#include <ritr/output/checkpoint.h>
+#include <ritr/output/run_directory.h>
+#include <ritr/time/simulation.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+namespace ritr
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    std::string read_text(const fs::path &file)
+    {
+      std::ifstream in(file, std::ios::binary);
+      return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    }
+
+    // The rows of a CSV file with a header whose first column is the step, up to `step`.
+    std::string rows_up_to(const fs::path &file, const unsigned int step)
+    {
+      std::istringstream lines(read_text(file));
+      std::string        line, rows;
+      std::getline(lines, line);  // the header
+      while (std::getline(lines, line) && !lines.eof())  // a last line without '\n' is torn
+        {
+          std::istringstream fields(line);
+          unsigned long      row_step = 0;
+          if (fields >> row_step && row_step <= step)
+            rows += line + '\n';
+        }
+      return rows;
+    }
+
+    template <typename T>
+    std::uint64_t hash_of(const std::vector<T> &v, const std::uint64_t hash)
+    {
+      return fnv1a(v.data(), v.size() * sizeof(T), hash);
+    }
+
+    std::uint64_t hash_of(const Eigen::VectorXd &v, const std::uint64_t hash)
+    {
+      return fnv1a(v.data(), v.size() * sizeof(double), hash);
+    }
+  } // namespace
+
+  template <int dim>
+  std::uint64_t Simulation<dim>::scene_fingerprint() const
+  {
+    // The parameters as parsed (comments and layout do not count) and what they produced
+    // from files the scene names (meshes, obstacles).
+    std::uint64_t h = fnv1a(scene_.parameter_listing.data(), scene_.parameter_listing.size());
+    h = hash_of(mesh_.cells, h);
+    for (const Eigen::VectorXd *v : {&problem_->initial_reference, &problem_->initial_positions,
+                                     &problem_->initial_velocity, &problem_->initial_obstacle_positions})
+      h = hash_of(*v, h);
+    return h;
+  }
+
+  template <int dim>
+  void Simulation<dim>::write_checkpoint() const
+  {
+    ScopedTimer timer(outputs_->output_seconds);
+    Checkpoint  c;
+    c.dimension            = dim;
+    c.scene_hash           = scene_hash_;
+    c.step                 = step_;
+    c.time                 = time_;
+    c.u                    = u_;
+    c.x                    = x_;
+    c.v                    = v_;
+    c.obstacle_positions   = obstacle_positions_;
+    c.history              = history_;
+    c.invariant_violations = invariant_violations_;
+    c.wall_seconds         = wall_seconds();
+    c.output_seconds       = outputs_->output_seconds;
+    c.linear_solve_seconds = earlier_.linear_solve_seconds + newton_solver().seconds_in_linear_solves();
+    c.symbolic_factorizations =
+      earlier_.symbolic_factorizations + newton_solver().linear_solver().n_symbolic_analyses();
+    c.numeric_factorizations = earlier_.numeric_factorizations + newton_solver().linear_solver().n_factorizations();
+    ritr::write_checkpoint((outputs_->directory / "checkpoint.bin").string(), c);
+  }
+
+  template <int dim>
+  bool Simulation<dim>::resume()
+  {
+    // Everything is read and checked before the first file is written.
+    const fs::path    directory = scene_.output_directory;
+    const std::string file      = (directory / "checkpoint.bin").string();
+    const Checkpoint  c         = read_checkpoint(file);
+    if (c.dimension != dim)
+      throw InputError(file + ": is of a " + std::to_string(c.dimension) + "D run, " + scene_.parameter_file +
+                       " is " + std::to_string(dim) + "D");
+    if (c.scene_hash != scene_hash_)
+      throw InputError(file + ": belongs to another scene (the parameters or initial mesh of " +
+                       scene_.parameter_file + " differ)");
+    const unsigned int n_steps = scene_.n_steps();
+    if (c.u.size() != u_.size() || c.x.size() != x_.size() || c.v.size() != v_.size() ||
+        c.obstacle_positions.size() != obstacle_positions_.size() || c.history.size() != c.step ||
+        c.step > n_steps)
+      throw InputError(file + ": is corrupted (its sizes do not match the scene)");
+    if (c.step == n_steps &&
+        read_text(directory / "summary.json").find("\"complete\": true") != std::string::npos)
+      return false;
+    // newton.csv is the one output that cannot be rebuilt from the checkpoint.
+    const std::string newton_rows = scene_.solver.newton_log ? rows_up_to(directory / "newton.csv", c.step) : "";
+
+    u_                    = c.u;
+    x_                    = c.x;
+    v_                    = c.v;
+    obstacle_positions_   = c.obstacle_positions;
+    step_                 = c.step;
+    time_                 = c.time;
+    history_              = c.history;
+    invariant_violations_ = c.invariant_violations;
+    earlier_.wall_seconds            = c.wall_seconds;
+    earlier_.linear_solve_seconds    = c.linear_solve_seconds;
+    earlier_.symbolic_factorizations = c.symbolic_factorizations;
+    earlier_.numeric_factorizations  = c.numeric_factorizations;
+    start_                           = std::chrono::steady_clock::now();
+
+    create_outputs();
+    outputs_->output_seconds = c.output_seconds;
+    write_summary(wall_seconds(), false);
+    // The collections list the frames up to the checkpoint before later frames go, so
+    // that no collection ever names a missing file.
+    std::vector<std::pair<double, std::string>> solution, reference, obstacles;
+    for (unsigned int s = 0; s <= step_; ++s)
+      if (writes_frame(s))
+        {
+          const double t = s == 0 ? 0.0 : history_[s - 1].time;
+          solution.emplace_back(t, numbered_output("solution", s, ".vtu"));
+          reference.emplace_back(t, numbered_output("reference", s, ".vtu"));
+          obstacles.emplace_back(t, numbered_output("obstacles", s, ".vtu"));
+        }
+    outputs_->solution.assign(solution);
+    outputs_->reference.assign(reference);
+    if (!obstacles_.empty())
+      outputs_->obstacles.assign(obstacles);
+    remove_outputs_after(directory, step_);
+    for (const auto &r : history_)
+      append_log_row(r);
+    outputs_->newton_log << newton_rows;
+    flush_logs();
+
+    std::cout << "ritr: " << scene_.parameter_file << ": resuming after step " << step_ << '/' << n_steps
+              << " (t = " << time_ << ") -> " << scene_.output_directory << std::endl;
+    run_steps();
+    return true;
+  }
+
+  template class Simulation<1>;
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace ritr

@@ -1,0 +1,250 @@
+// `ritr SCENE.prm --resume`: a run killed (SIGKILL) between two checkpoints and resumed, twice,
+// ends where the uninterrupted run ends -- the same positions in every frame, the same
+// log.csv, newton.csv, collections and summary totals -- and a checkpoint that is missing,
+// damaged or of another scene is refused with one line and exit code 2, touching nothing.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <regex>
+#include <thread>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "run_ritr.h"
+
+using namespace ritr::test_support;
+namespace fs = std::filesystem;
+
+namespace
+{
+  const std::string folder = "output/resume_run";
+
+  // `text` with the value of its first `set NAME = ...` replaced.
+  std::string with_entry(const std::string &text, const std::string &name, const std::string &value)
+  {
+    const std::regex entry("set " + name + " *=[^\n]*");
+    EXPECT_TRUE(std::regex_search(text, entry)) << name;
+    return std::regex_replace(text, entry, "set " + name + " = " + value, std::regex_constants::format_first_only);
+  }
+
+  // A short ball-on-spikes (r-adaptivity, contact, friction): 10 steps, a frame and a
+  // checkpoint every third and at the end, the ball thrown down so that it touches the
+  // spikes early, at most five outer iterations a step so that the test stays short.
+  std::string ball_scene(const std::string &output)
+  {
+    std::string text = read_file(source_dir() + "/prm/ritr_ball_on_spikes_2d.prm");
+    text             = with_entry(text, "end time", "0.1");
+    text             = with_entry(text, "output every", "3");
+    text             = with_entry(text, "output directory", output);
+    text             = with_entry(text, "max iterations", "5");  // Adaptivity's
+    return text + "set write nodal csv = true\n"
+                  "subsection Body 0\n  set initial velocity = 0; -2\nend\n"
+                  "subsection Solver\n  set newton log = true\nend\n";
+  }
+  constexpr unsigned int n_steps = 10, output_every = 3;
+
+  std::string write_scene(const std::string &name, const std::string &text)
+  {
+    const std::string file = folder + "/" + name + ".prm";
+    write_file(file, text);
+    return file;
+  }
+
+  unsigned int log_rows(const std::string &directory)
+  {
+    const std::string text = read_file(directory + "/log.csv");
+    return text.empty() ? 0 : std::count(text.begin(), text.end(), '\n') - 1;
+  }
+
+  // Starts ritr on `scene`, waits until its log.csv has at least `rows` rows and a checkpoint
+  // exists, and kills it with SIGKILL. False if the run ended before.
+  bool run_and_kill(const std::string &scene, const std::string &output, const unsigned int rows,
+                    const bool resume)
+  {
+    const pid_t pid = fork();
+    if (pid == 0)
+      {
+        const int null = open("/dev/null", O_WRONLY);
+        dup2(null, 1);
+        dup2(null, 2);
+        const char *binary = std::getenv("RITR_BINARY");
+        if (resume)
+          execl(binary, "ritr", scene.c_str(), "--resume", static_cast<char *>(nullptr));
+        else
+          execl(binary, "ritr", scene.c_str(), static_cast<char *>(nullptr));
+        _exit(127);
+      }
+    int  status = 0;
+    bool ended  = false;
+    while (!(ended = waitpid(pid, &status, WNOHANG) == pid) &&
+           (log_rows(output) < rows || !fs::exists(output + "/checkpoint.bin")))
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (ended)
+      return false;
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    return true;
+  }
+
+  // The numbers of a CSV file's rows.
+  std::vector<std::vector<double>> numbers(const std::string &file) { return read_csv(file).rows; }
+
+  // Largest difference between the same numbers of two tables.
+  double max_difference(const std::vector<std::vector<double>> &a, const std::vector<std::vector<double>> &b)
+  {
+    EXPECT_EQ(a.size(), b.size());
+    double d = 0;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+      for (std::size_t j = 0; j < std::min(a[i].size(), b[i].size()); ++j)
+        d = std::max(d, std::abs(a[i][j] - b[i][j]));
+    return d;
+  }
+
+  std::string summary_entry(const std::string &directory, const std::string &name)
+  {
+    const std::string text = read_file(directory + "/summary.json");
+    std::smatch       m;
+    EXPECT_TRUE(std::regex_search(text, m, std::regex("\"" + name + "\": ([^,\n]*)"))) << name << '\n' << text;
+    return m[1];
+  }
+
+  // The steps of log.csv, and the (step, solve, iteration) triples of newton.csv, in order.
+  std::vector<double> column(const std::string &file, const std::string &name)
+  {
+    const CsvTable     t = read_csv(file);
+    std::vector<double> c;
+    for (const auto &row : t.rows)
+      c.push_back(row[t.column(name)]);
+    return c;
+  }
+} // namespace
+
+TEST(ResumeRun, KilledAndResumedRunMatchesTheUninterruptedOne)
+{
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string whole = folder + "/whole", killed = folder + "/killed";
+  const RunResult   full = run_ritr(write_scene("whole", ball_scene(whole)));
+  ASSERT_EQ(full.exit_code, 0) << full.output;
+
+  // Killed twice after a few steps, each kill past a checkpoint; resumed after each.
+  const std::string scene = write_scene("killed", ball_scene(killed));
+  ASSERT_TRUE(run_and_kill(scene, killed, 4, false)) << "the run ended before it could be killed";
+  const unsigned int first_kill_rows = log_rows(killed);
+  ASSERT_LT(first_kill_rows, 7u);
+  ASSERT_TRUE(run_and_kill(scene, killed, 7, true)) << "the resumed run ended before the kill";
+  std::cout << "killed after " << first_kill_rows << " and " << log_rows(killed) << " steps" << std::endl;
+  const RunResult resumed = run_ritr(scene + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  std::smatch resumed_after;
+  ASSERT_TRUE(std::regex_search(resumed.output, resumed_after, std::regex("resuming after step (\\d+)/10")))
+    << resumed.output;
+  EXPECT_EQ(std::stoi(resumed_after[1]) % output_every, 0u) << "a checkpoint with every frame";
+  EXPECT_LT(std::stoi(resumed_after[1]), 9) << "killed before the step 9 frame";
+
+  // Positions, velocities and reference positions of every frame (17 digits).
+  double largest = 0;
+  for (unsigned int s = 0; s <= n_steps; ++s)
+    if (s % output_every == 0 || s == n_steps)
+      {
+        char name[32];
+        std::snprintf(name, sizeof(name), "/nodes-%05u.csv", s);
+        largest = std::max(largest, max_difference(numbers(whole + name), numbers(killed + name)));
+      }
+  std::cout << "largest difference of u, x, v between the resumed and the uninterrupted run: " << largest
+            << std::endl;
+  EXPECT_LE(largest, 1e-12);
+
+  // Each step once in log.csv, with the uninterrupted run's energies (12 digits).
+  std::vector<double> steps;
+  for (unsigned int s = 1; s <= n_steps; ++s)
+    steps.push_back(s);
+  EXPECT_EQ(column(killed + "/log.csv", "step"), steps);
+  const auto energy_a = column(whole + "/log.csv", "energy"), energy_b = column(killed + "/log.csv", "energy");
+  ASSERT_EQ(energy_a.size(), energy_b.size());
+  for (std::size_t i = 0; i < energy_a.size(); ++i)
+    EXPECT_NEAR(energy_a[i], energy_b[i], 1e-10 * std::abs(energy_a[i])) << "step " << i + 1;
+  // newton.csv: the same iterations, each once.
+  for (const char *c : {"step", "solve", "iteration"})
+    EXPECT_EQ(column(whole + "/newton.csv", c), column(killed + "/newton.csv", c)) << c;
+  EXPECT_LE(max_difference(numbers(whole + "/newton.csv"), numbers(killed + "/newton.csv")), 1e-9);
+
+  // Every frame once in each collection, at the same times.
+  for (const char *pvd : {"/solution.pvd", "/reference.pvd", "/obstacles.pvd"})
+    EXPECT_EQ(read_file(whole + pvd), read_file(killed + pvd)) << pvd;
+
+  EXPECT_EQ(summary_entry(killed, "complete"), "true");
+  for (const char *entry : {"steps", "final_energy", "total_newton_iterations", "total_outer_iterations",
+                            "total_line_search_trials", "invariant_violations"})
+    EXPECT_EQ(summary_entry(whole, entry), summary_entry(killed, entry)) << entry;
+
+  const RunResult compare = run_command(std::string(RITR_COMPARE_BINARY) + " " + whole + " " + killed, "2>&1");
+  ASSERT_EQ(compare.exit_code, 0) << compare.output;
+  std::smatch hausdorff;
+  ASSERT_TRUE(std::regex_search(compare.output, hausdorff, std::regex("\"max_hausdorff\": ([^,]*)")));
+  EXPECT_LE(std::stod(hausdorff[1]), 1e-12) << compare.output;
+
+  // A finished run has nothing left to resume: it says so and touches nothing.
+  const auto before = snapshot(killed);
+  const RunResult again = run_ritr(scene + " --resume");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("already complete"), std::string::npos) << again.output;
+  EXPECT_EQ(snapshot(killed), before);
+}
+
+namespace
+{
+  // Resumes `scene` whose output directory holds `checkpoint` (none if empty): one line
+  // naming the checkpoint with `words`, exit code 2, no file touched.
+  void expect_refused(const std::string &name, const std::string &scene_text, const std::string &checkpoint,
+                      const std::string &words)
+  {
+    const std::string output = folder + "/" + name;
+    fs::create_directories(output);
+    write_file(output + "/log.csv", "previous results\n");
+    if (!checkpoint.empty())
+      write_file(output + "/checkpoint.bin", checkpoint);
+    const std::string scene  = write_scene(name, replaced(scene_text, "OUTPUT", output));
+    const auto        before = snapshot(output);
+    const RunResult   r      = run_ritr(scene + " --resume");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(output + "/checkpoint.bin"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(words), std::string::npos) << r.output;
+    EXPECT_EQ(snapshot(output), before);
+  }
+} // namespace
+
+TEST(ResumeRun, RefusesMissingDamagedOrForeignCheckpoints)
+{
+  fs::remove_all(folder + "/bad");
+  fs::create_directories(folder + "/bad");
+  const std::string good_output = folder + "/bad/good";
+  const RunResult   good = run_ritr(write_scene("bad/good", replaced(small_scene, "OUTPUT", good_output)));
+  ASSERT_EQ(good.exit_code, 0) << good.output;
+  const std::string checkpoint = read_file(good_output + "/checkpoint.bin");
+  ASSERT_GT(checkpoint.size(), 100u);
+
+  expect_refused("bad/missing", small_scene, "", "no checkpoint");
+  expect_refused("bad/truncated", small_scene, checkpoint.substr(0, checkpoint.size() / 2), "truncated");
+  std::string flipped = checkpoint;
+  flipped[flipped.size() / 2] ^= 0x10;
+  expect_refused("bad/corrupted", small_scene, flipped, "corrupted");
+  expect_refused("bad/not_a_checkpoint", small_scene, "step,time\n1,0.01\n", "not a ritr checkpoint");
+  expect_refused("bad/other_scene", replaced(small_scene, "set dhat = 1e-3", "set dhat = 2e-3"), checkpoint,
+                 "another scene");
+  // The same scene with its outputs elsewhere, run on another number of threads, is the
+  // same run.
+  const std::string moved = folder + "/bad/moved";
+  fs::create_directories(moved);
+  fs::copy(good_output, moved, fs::copy_options::recursive);
+  const std::string moved_scene =
+    replaced(small_scene, "OUTPUT", moved) + "subsection Solver\n  set threads = 1\nend\n";
+  const RunResult r = run_ritr(write_scene("bad/moved", moved_scene) + " --resume");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("already complete"), std::string::npos) << r.output;
+}
