@@ -1,4 +1,5 @@
 #include <ritr/adaptivity/reference_penalties.h>
+#include <ritr/common/log_barrier.h>
 #include <ritr/common/psd_projection.h>
 #include <ritr/common/second_order_dual.h>
 
@@ -132,8 +133,7 @@ namespace ritr
           continue;
         if (w <= 0)
           return std::numeric_limits<double>::infinity();
-        const double r = w - w_hat, l = std::log(w / w_hat);
-        energy += kappa * -r * r * l;
+        energy += kappa * log_barrier(w, w_hat);
         if (!gradient && !hessian)
           continue;
         std::array<std::array<Dual, dim>, dim + 1> nodes;
@@ -141,8 +141,8 @@ namespace ritr
           for (int k = 0; k < dim; ++k)
             nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
         const Dual   measure = simplex_measure<dim, Dual>(nodes);
-        const double db      = -2 * r * l - r * r / w;
-        const double d2b     = -2 * l - 4 * r / w + r * r / (w * w);
+        const double db      = log_barrier_derivative(w, w_hat);
+        const double d2b     = log_barrier_second_derivative(w, w_hat);
         if (gradient)
           for (int i = 0; i < n; ++i)
             (*gradient)[cell[i / dim] * dim + i % dim] += kappa * db * measure.grad[i];

@@ -24,7 +24,7 @@ namespace ritr::contact
 
     BarrierStiffness s;
     // 4 d b''(d) is the barrier Hessian along the normal in unsquared-distance units.
-    s.kappa_min = 1e11 * average_mass / (4.0 * d_ref * barrier_second_derivative(d_ref, dhat_sqr));
+    s.kappa_min = 1e11 * average_mass / (4.0 * d_ref * log_barrier_second_derivative(d_ref, dhat_sqr));
     s.kappa_max = 100.0 * s.kappa_min;
 
     const double gb = grad_barrier.squaredNorm();

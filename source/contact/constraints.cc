@@ -157,8 +157,8 @@ namespace ritr::contact
           p[j][k] = make_variable<S>(j * dim + k, x[v.slots[j] * dim + k]);
       const S      d  = typed_distance_sqr<dim, S>(v.cls, p);
       const double dv = value_of(d);
-      S b = compose(d, barrier(dv, dhat_sqr), barrier_first_derivative(dv, dhat_sqr),
-                    barrier_second_derivative(dv, dhat_sqr));
+      S b = compose(d, log_barrier(dv, dhat_sqr), log_barrier_derivative(dv, dhat_sqr),
+                    log_barrier_second_derivative(dv, dhat_sqr));
       if constexpr (dim == 3)
         if (v.mollified)
           {

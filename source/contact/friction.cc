@@ -99,7 +99,7 @@ namespace ritr::contact
                                   c.mollifier_threshold);
       // -db/d(sqrt d) = -b'(d) 2 sqrt(d) > 0 inside the barrier's range.
       const double lambda =
-        -kappa * weights.weight(c) * m * barrier_first_derivative(d, dhat_sqr) * 2.0 * std::sqrt(d);
+        -kappa * weights.weight(c) * m * log_barrier_derivative(d, dhat_sqr) * 2.0 * std::sqrt(d);
       if (!(lambda > 0.0))
         return false;
 

@@ -12,6 +12,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
+using ritr::log_barrier;
+using ritr::log_barrier_derivative;
+using ritr::log_barrier_second_derivative;
 using namespace ritr::contact;
 using namespace ritr::contact::test_support;
 
@@ -85,26 +88,26 @@ TEST(BarrierFunction, DerivativesMatchFiniteDifferences)
   for (const double d : {1e-6, 1e-4, 1e-3, 5e-3, 9e-3, 9.99e-3})
     {
       const double h = 1e-6 * d;
-      EXPECT_NEAR(barrier_first_derivative(d, dhat_sqr),
-                  (barrier(d + h, dhat_sqr) - barrier(d - h, dhat_sqr)) / (2 * h),
-                  1e-6 * std::abs(barrier_first_derivative(d, dhat_sqr)) + 1e-12);
-      EXPECT_NEAR(barrier_second_derivative(d, dhat_sqr),
-                  (barrier_first_derivative(d + h, dhat_sqr) -
-                   barrier_first_derivative(d - h, dhat_sqr)) /
+      EXPECT_NEAR(log_barrier_derivative(d, dhat_sqr),
+                  (log_barrier(d + h, dhat_sqr) - log_barrier(d - h, dhat_sqr)) / (2 * h),
+                  1e-6 * std::abs(log_barrier_derivative(d, dhat_sqr)) + 1e-12);
+      EXPECT_NEAR(log_barrier_second_derivative(d, dhat_sqr),
+                  (log_barrier_derivative(d + h, dhat_sqr) -
+                   log_barrier_derivative(d - h, dhat_sqr)) /
                     (2 * h),
-                  1e-6 * std::abs(barrier_second_derivative(d, dhat_sqr)) + 1e-10);
-      EXPECT_GT(barrier(d, dhat_sqr), 0.0);
-      EXPECT_LT(barrier_first_derivative(d, dhat_sqr), 0.0);
-      EXPECT_GT(barrier_second_derivative(d, dhat_sqr), 0.0);
+                  1e-6 * std::abs(log_barrier_second_derivative(d, dhat_sqr)) + 1e-10);
+      EXPECT_GT(log_barrier(d, dhat_sqr), 0.0);
+      EXPECT_LT(log_barrier_derivative(d, dhat_sqr), 0.0);
+      EXPECT_GT(log_barrier_second_derivative(d, dhat_sqr), 0.0);
     }
   // C2 at dhat^2, zero beyond, infinite at contact.
-  EXPECT_NEAR(barrier(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-20);
-  EXPECT_NEAR(barrier_first_derivative(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-12);
-  EXPECT_NEAR(barrier_second_derivative(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-7);
-  EXPECT_EQ(barrier(0.02, dhat_sqr), 0.0);
-  EXPECT_EQ(barrier_first_derivative(0.02, dhat_sqr), 0.0);
-  EXPECT_EQ(barrier_second_derivative(0.02, dhat_sqr), 0.0);
-  EXPECT_TRUE(std::isinf(barrier(0.0, dhat_sqr)));
+  EXPECT_NEAR(log_barrier(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-20);
+  EXPECT_NEAR(log_barrier_derivative(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-12);
+  EXPECT_NEAR(log_barrier_second_derivative(dhat_sqr * (1 - 1e-9), dhat_sqr), 0.0, 1e-7);
+  EXPECT_EQ(log_barrier(0.02, dhat_sqr), 0.0);
+  EXPECT_EQ(log_barrier_derivative(0.02, dhat_sqr), 0.0);
+  EXPECT_EQ(log_barrier_second_derivative(0.02, dhat_sqr), 0.0);
+  EXPECT_TRUE(std::isinf(log_barrier(0.0, dhat_sqr)));
 }
 
 TEST(BarrierFunction, MollifierDerivatives)
@@ -220,7 +223,7 @@ TEST(BarrierAssembly, MollifiedNearlyParallelEdges)
       const double m = edge_edge_mollifier(ea.cross(eb).squaredNorm(), c.mollifier_threshold);
       EXPECT_LT(m, 1.0);
       EXPECT_NEAR(barrier_energy<3>(cs, V, dhat, {}),
-                  m * barrier(constraint_distance_sqr<3>(c, V), dhat * dhat), 1e-14);
+                  m * log_barrier(constraint_distance_sqr<3>(c, V), dhat * dhat), 1e-14);
       expect_barrier_derivatives_match_fd<3>(cs, V, dhat, {}, 2e-5);
     }
 }
@@ -331,7 +334,7 @@ TEST(BarrierStiffness, InitialStiffness)
 {
   const double bbox = 2.0, dhat = 1e-3, mass = 0.5;
   const double d_ref = 1e-16 * bbox * bbox;
-  const double kmin  = 1e11 * mass / (4 * d_ref * barrier_second_derivative(d_ref, dhat * dhat));
+  const double kmin  = 1e11 * mass / (4 * d_ref * log_barrier_second_derivative(d_ref, dhat * dhat));
 
   // No barrier gradient: kappa_min.
   const Eigen::VectorXd gE = Eigen::VectorXd::LinSpaced(6, -1, 1);

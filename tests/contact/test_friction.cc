@@ -12,6 +12,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
+using ritr::log_barrier;
+using ritr::log_barrier_derivative;
+using ritr::log_barrier_second_derivative;
 using namespace ritr::contact;
 using namespace ritr::contact::test_support;
 
@@ -148,7 +151,7 @@ TEST(Friction, NormalForceBasisAndCoefficients2D)
   const auto  &fc = fr[0];
   const double d  = 0.05 * 0.05;
   EXPECT_NEAR(fc.normal_force,
-              -kappa * 0.25 * barrier_first_derivative(d, dhat * dhat) * 2 * std::sqrt(d), 1e-12);
+              -kappa * 0.25 * log_barrier_derivative(d, dhat * dhat) * 2 * std::sqrt(d), 1e-12);
   EXPECT_GT(fc.normal_force, 0.0);
   EXPECT_EQ(fc.mu, mu);
   EXPECT_EQ(fc.n_vertices, 3);

@@ -3,7 +3,9 @@
 // stiffness rules of Li et al. 2020 (IPC, supplementary Sec. on barrier stiffness).
 //
 // All distances d here are SQUARED distances and dhat_sqr = dhat^2, which avoids square
-// roots in every kernel; b(d) then is the IPC barrier expressed in d.
+// roots in every kernel; the barrier itself is common/log_barrier.h applied to d.
+#include <ritr/common/log_barrier.h>
+
 #include <Eigen/Core>
 
 #include <cmath>
@@ -11,36 +13,6 @@
 
 namespace ritr::contact
 {
-  // b(d) = -(d - dhat^2)^2 ln(d / dhat^2) for 0 < d < dhat^2, 0 for d >= dhat^2, +inf for
-  // d <= 0.
-  inline double barrier(const double d, const double dhat_sqr)
-  {
-    if (d <= 0.0)
-      return std::numeric_limits<double>::infinity();
-    if (d >= dhat_sqr)
-      return 0.0;
-    const double r = d - dhat_sqr;
-    return -r * r * std::log(d / dhat_sqr);
-  }
-
-  // db/dd.
-  inline double barrier_first_derivative(const double d, const double dhat_sqr)
-  {
-    if (d >= dhat_sqr)
-      return 0.0;
-    const double r = d - dhat_sqr;
-    return -2.0 * r * std::log(d / dhat_sqr) - r * r / d;
-  }
-
-  // d2b/dd2.
-  inline double barrier_second_derivative(const double d, const double dhat_sqr)
-  {
-    if (d >= dhat_sqr)
-      return 0.0;
-    const double r = d - dhat_sqr;
-    return -2.0 * std::log(d / dhat_sqr) - 4.0 * r / d + r * r / (d * d);
-  }
-
   // IPC's edge-edge mollifier threshold eps_x = 1e-3 |ea0 - ea1|^2 |eb0 - eb1|^2, meant
   // to be evaluated at REST positions.
   inline double edge_edge_mollifier_threshold(const Eigen::Vector3d &ea0,
