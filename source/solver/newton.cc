@@ -42,8 +42,12 @@ namespace ritr
     Eigen::SparseMatrix<double> reduced(n_free, n_free);
     Triplets                    reduced_triplets;
     // Adaptive projection: projected Newton until it crawls, then the exact Hessian.
-    bool         exact           = settings.projection == HessianProjection::never;
-    unsigned int crawling        = 0;
+    // While prescribed entries move, projected Newton lets gaps under sharp corners close to
+    // ~1e-12, where neither Hessian makes progress afterwards; exact steps keep them open.
+    const bool   adaptive           = settings.projection == HessianProjection::adaptive;
+    bool         exact              = settings.projection == HessianProjection::never;
+    bool         exact_while_moving = adaptive;
+    unsigned int crawling           = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
 
     for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations)
@@ -57,9 +61,6 @@ namespace ritr
           }
         g.setZero();
         objective.gradient(z, g);
-        h.clear();
-        objective.hessian(z, h, !exact);
-
         // Prescribed part of the step, then the free part from
         // H_ff dz_f = -g_f - H_fk dz_k.
         dz.setZero();
@@ -70,6 +71,9 @@ namespace ritr
               dz[i] = targets[i] - z[i];
               kinematic_pending |= dz[i] != 0.0;
             }
+        const bool use_exact = exact || (exact_while_moving && kinematic_pending);
+        h.clear();
+        objective.hessian(z, h, !use_exact);
         Eigen::VectorXd rhs(n_free);
         for (Eigen::Index i = 0; i < n; ++i)
           if (free_index[i] >= 0)
@@ -102,7 +106,7 @@ namespace ritr
         // A step from a shifted Hessian is small because of the shift, not because z is near
         // the minimum (the barrier's negative curvature at tiny gaps forces huge shifts): it
         // does not count as converged.
-        if (!kinematic_pending && result.last_step_norm <= settings.tolerance && !(exact && shift > 0))
+        if (!kinematic_pending && result.last_step_norm <= settings.tolerance && !(use_exact && shift > 0))
           {
             result.converged = true;
             return result;
@@ -132,7 +136,7 @@ namespace ritr
                     result.converged = true;
                     return result;
                   }
-                if (exact && settings.projection == HessianProjection::adaptive)
+                if (use_exact && adaptive)
                   break;  // back to projected Newton below, from the same z
                 result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
                 return result;
@@ -162,8 +166,8 @@ namespace ritr
           }
         if (alpha < settings.min_step)
           {
-            exact    = false;
-            crawling = 0;
+            exact = exact_while_moving = false;
+            crawling                   = 0;
             continue;
           }
         z = trial;
@@ -174,11 +178,11 @@ namespace ritr
               z[i] = targets[i];
         if (settings.monitor)
           settings.monitor({result.iterations, e0, trial_energy - e0, decrease, result.last_step_norm,
-                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift, exact},
+                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift, use_exact},
                            z);
         // Full steps whose length does not shrink: the projected Hessian is a poor model of the
         // energy here and Newton has become linear; the exact Hessian restores quadratic steps.
-        if (settings.projection == HessianProjection::adaptive && !exact)
+        if (adaptive && !exact)
           {
             const bool full_step = !kinematic_pending && alpha == 1.0;
             crawling = full_step && result.last_step_norm > 0.5 * last_full_step ? crawling + 1 : 0;

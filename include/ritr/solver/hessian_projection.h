@@ -11,7 +11,7 @@ namespace ritr
   {
     always,   // projected Newton
     never,    // exact Hessian, shifted by a multiple of the identity where indefinite
-    adaptive  // projected until full steps stop shrinking, then exact; projected again if
-              // an exact step's line search fails
+    adaptive  // exact while prescribed entries move, then projected until full steps stop
+              // shrinking, then exact; projected only if an exact step's line search fails
   };
 } // namespace ritr
