@@ -1,56 +1,24 @@
 #include <ritr/scene/adaptivity_options.h>
 
-#include <stdexcept>
-
 namespace ritr
 {
-  namespace
-  {
-    [[noreturn]] void unknown(const std::string &what, const std::string &name)
-    {
-      throw std::invalid_argument("unknown " + what + " '" + name + "'");
-    }
-  } // namespace
-
   RitrHessian ritr_hessian_from(const std::string &name)
   {
-    if (name == "truncated")
-      return RitrHessian::truncated;
-    if (name == "full")
-      return RitrHessian::full;
-    if (name == "filtered")
-      return RitrHessian::filtered;
-    unknown("outer Hessian", name);
+    return value_named(ritr_hessian_names, name, "outer Hessian");
   }
 
   InertiaForm inertia_form_from(const std::string &name)
   {
-    if (name == "corrected")
-      return InertiaForm::corrected;
-    if (name == "uncorrected")
-      return InertiaForm::uncorrected;
-    unknown("inertia form", name);
+    return value_named(inertia_form_names, name, "inertia form");
   }
 
   PredictorProjection predictor_projection_from(const std::string &name)
   {
-    if (name == "in-optimization")
-      return PredictorProjection::in_optimization;
-    if (name == "after-optimization")
-      return PredictorProjection::after_optimization;
-    unknown("predictor projection", name);
+    return value_named(predictor_projection_names, name, "predictor projection");
   }
 
   Admissibility admissibility_from(const std::string &name)
   {
-    if (name == "none")
-      return Admissibility::none;
-    if (name == "geometric")
-      return Admissibility::geometric;
-    if (name == "physical")
-      return Admissibility::physical;
-    if (name == "both")
-      return Admissibility::both;
-    unknown("admissibility", name);
+    return value_named(admissibility_names, name, "admissibility");
   }
 } // namespace ritr

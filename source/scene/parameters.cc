@@ -1,5 +1,6 @@
 #include <ritr/output/run_directory.h>
 #include <ritr/scene/expression.h>
+#include <ritr/scene/parameter_text.h>
 #include <ritr/scene/parameters.h>
 #include <ritr/scene/scene_file.h>
 
@@ -23,14 +24,15 @@ namespace ritr
 
     void declare(ParameterHandler &prm)
     {
-      prm.declare_entry("dimension", "2", Patterns::Integer(1, 3), "Spatial dimension: 1 (rods), 2 (triangles, plane strain), 3 (tetrahedra).");
-      prm.declare_entry("mode", "dynamic", Patterns::Selection("dynamic|static"),
+      const Scene defaults;  // of the top-level and Gravity entries
+      prm.declare_entry("dimension", prm_value(defaults.dimension), Patterns::Integer(1, 3), "Spatial dimension: 1 (rods), 2 (triangles, plane strain), 3 (tetrahedra).");
+      prm.declare_entry("mode", defaults.mode, Patterns::Selection("dynamic|static"),
                         "dynamic: implicit Euler elastodynamics; static: a sequence of equilibria (load-stepped in pseudo-time t).");
-      prm.declare_entry("time step", "0.01", Patterns::Double(0), "Time step h (dynamic) or load step (static).");
-      prm.declare_entry("end time", "1", Patterns::Double(0), "Simulated time: a whole number of time steps (the last step lands on it).");
-      prm.declare_entry("output directory", "output", Patterns::Anything(), "Where results are written (created if missing; relative to the working directory).");
-      prm.declare_entry("output every", "1", Patterns::Integer(1), "Write VTU files every this many steps (log.csv gets every step).");
-      prm.declare_entry("write nodal csv", "false", Patterns::Bool(), "Also write nodes-NNNNN.csv with id, u, x, v per node.");
+      prm.declare_entry("time step", prm_value(defaults.time_step), Patterns::Double(0), "Time step h (dynamic) or load step (static).");
+      prm.declare_entry("end time", prm_value(defaults.end_time), Patterns::Double(0), "Simulated time: a whole number of time steps (the last step lands on it).");
+      prm.declare_entry("output directory", defaults.output_directory, Patterns::Anything(), "Where results are written (created if missing; relative to the working directory).");
+      prm.declare_entry("output every", prm_value(defaults.output_every), Patterns::Integer(1), "Write VTU files every this many steps (log.csv gets every step).");
+      prm.declare_entry("write nodal csv", prm_value(defaults.write_nodal_csv), Patterns::Bool(), "Also write nodes-NNNNN.csv with id, u, x, v per node.");
 
       for (unsigned int b = 0; b < max_bodies; ++b)
         {
@@ -60,8 +62,8 @@ namespace ritr
           prm.leave_subsection();
         }
       prm.enter_subsection("Gravity");
-      prm.declare_entry("acceleration", "0,-9.81,0", doubles(), "Body force per unit mass: dim numbers.");
-      prm.declare_entry("load factor", "1", Patterns::Anything(), "Scalar expression in t scaling gravity (load stepping in statics, e.g. t/T).");
+      prm.declare_entry("acceleration", prm_value(defaults.gravity), doubles(), "Body force per unit mass: dim numbers.");
+      prm.declare_entry("load factor", defaults.load_factor, Patterns::Anything(), "Scalar expression in t scaling gravity (load stepping in statics, e.g. t/T).");
       prm.leave_subsection();
       for (unsigned int d = 0; d < max_dirichlet; ++d)
         {
@@ -88,35 +90,9 @@ namespace ritr
           prm.declare_entry("rotation center", "0,0,0", doubles(), "Centre of rotation (dim numbers).");
           prm.leave_subsection();
         }
-      prm.enter_subsection("Contact");
-      prm.declare_entry("enabled", "true", Patterns::Bool(), "IPC contact between bodies, with obstacles, and self-contact.");
-      prm.declare_entry("dhat", "1e-3", Patterns::Double(0), "Barrier activation distance.");
-      prm.declare_entry("barrier stiffness", "adaptive", Patterns::Anything(), "'adaptive' (IPC's initialisation and doubling rule) or a fixed positive value.");
-      prm.declare_entry("friction coefficient", "0", Patterns::Double(0), "Coulomb friction coefficient mu (0: frictionless).");
-      prm.declare_entry("epsilon v", "1e-3", Patterns::Double(0), "Friction smoothing velocity eps_v [m/s]; positive when there is friction.");
-      prm.declare_entry("friction iterations", "1", Patterns::Integer(1), "Lagged friction updates per step.");
-      prm.declare_entry("self contact", "true", Patterns::Bool(), "Contact within one body and between bodies.");
-      prm.leave_subsection();
-      prm.enter_subsection("Adaptivity");
-      prm.declare_entry("enabled", "false", Patterns::Bool(), "Optimal r-adaptive in-timestep remeshing: every step also optimises the reference node positions (one density for all bodies; Dirichlet nodes keep their reference position).");
-      prm.declare_entry("hessian", "truncated", Patterns::Selection("truncated|full|filtered"), "Outer Hessian: truncated (per-cell PSD blocks of d2R/du2, paper eq. 23), full (dense Schur complement with the response of x) or filtered (that response with entries below 1e-3 of the largest dropped); full and filtered are dense, for small meshes.");
-      prm.declare_entry("inertia", "corrected", Patterns::Selection("corrected|uncorrected"), "Inertia term: corrected (paper eq. 10) or uncorrected (eq. 8, keeps 1/2 x_pred^T M x_pred; ablation).");
-      prm.declare_entry("projection", "in-optimization", Patterns::Selection("in-optimization|after-optimization"), "L2 projection of the predictor: at every candidate mesh (eq. 6) or only after the step's optimisation (ablation).");
-      prm.declare_entry("admissibility", "both", Patterns::Selection("none|geometric|physical|both"), "geometric: boundary sliding, measure barrier and step filter; physical: x = argmin E(., u) at every mesh (without it x and u are minimised jointly; no contact). Ablation switch of paper Fig. 8.");
-      prm.declare_entry("measure barrier stiffness", "0", Patterns::Double(0), "Stiffness of the reference area/volume barrier (eq. 21); 0: the contact barrier's stiffness, or (h^2) E / w_hat without contact.");
-      prm.declare_entry("quadrature subdivisions", "0", Patterns::Integer(0), "Transfer quadrature on each candidate cell: the Witherden-Vincent rule of 5 points per direction, repeated on n^dim sub-cells (the predictor has kinks inside candidate cells, and the outer solve exploits quadrature error). 0: 64 for rods, 1 for triangles and tetrahedra.");
-      prm.declare_entry("epsilon r", "1e-6", Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
-      prm.declare_entry("sliding tolerance", "1e-6", Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
-      prm.declare_entry("max iterations", "100", Patterns::Integer(1), "Outer iterations per step.");
-      prm.leave_subsection();
-      prm.enter_subsection("Solver");
-      prm.declare_entry("newton tolerance", "1e-5", Patterns::Double(0), "Dynamics: stop when |dx|_inf / h < this times the bodies' bounding-box diagonal (eps_e, velocity relative to the scene's size).");
-      prm.declare_entry("static tolerance", "1e-8", Patterns::Double(0), "Statics: stop when |dx|_inf < this times the bodies' bounding-box diagonal.");
-      prm.declare_entry("max iterations", "200", Patterns::Integer(1), "Newton iterations per solve before the run stops (exit code 3).");
-      prm.declare_entry("hessian projection", "adaptive", Patterns::Selection("always|never|adaptive"), "always: projected Newton (every element and contact stencil's Hessian projected onto the PSD cone, as in IPC; it converges only linearly where the projected Hessian differs much from the exact one, as under a sharp punch on a fine mesh); never: the exact Hessian, shifted by a multiple of the identity where it is not positive definite (quadratic convergence there, but its steps run into contact and get cut back by CCD: slower or failing on dynamic contact scenes); adaptive: the exact Hessian while prescribed nodes and obstacles move, then projected Newton until five full steps in a row fail to halve, then the exact Hessian again (projected only, for the rest of the solve, if an exact step's line search fails).");
-      prm.declare_entry("threads", "0", Patterns::Integer(0), "Assembly threads (0: all cores).");
-      prm.declare_entry("newton log", "false", Patterns::Bool(), "Also write newton.csv: one row per Newton iteration (energy, step and gradient norms, predicted decrease, CCD bound, accepted step, barrier stiffness, closest active distance), for diagnosing slow or failed solves.");
-      prm.leave_subsection();
+      ContactScene::declare_parameters(prm);
+      AdaptivityScene::declare_parameters(prm);
+      SolverScene::declare_parameters(prm);
     }
 
     // Calls read(name) inside every enabled numbered subsection "KIND i", i < count.
@@ -332,51 +308,16 @@ namespace ritr
           prm.leave_subsection();
         }
 
-      prm.enter_subsection("Contact");
-      s.contact.enabled              = prm.get_bool("enabled");
-      s.contact.dhat                 = prm.get_double("dhat");
-      const std::string stiffness    = prm.get("barrier stiffness");
-      if (stiffness != "adaptive")
+      try
         {
-          char *end                   = nullptr;
-          s.contact.barrier_stiffness = std::strtod(stiffness.c_str(), &end);
-          if (end == stiffness.c_str() || *end != '\0' || !(s.contact.barrier_stiffness > 0) ||
-              !std::isfinite(s.contact.barrier_stiffness))
-            fail("Contact/barrier stiffness", "must be 'adaptive' or a positive number");
+          s.contact.parse_parameters(prm);
+          s.adaptivity.parse_parameters(prm);
+          s.solver.parse_parameters(prm);
         }
-      s.contact.friction_coefficient = prm.get_double("friction coefficient");
-      s.contact.epsilon_v            = prm.get_double("epsilon v");
-      s.contact.friction_iterations  = prm.get_integer("friction iterations");
-      s.contact.self_contact         = prm.get_bool("self contact");
-      if (!(s.contact.dhat > 0))
-        fail("Contact/dhat", "must be positive");
-      if (s.contact.enabled && s.contact.friction_coefficient > 0 && !(s.contact.epsilon_v > 0))
-        fail("Contact/epsilon v", "must be positive when the friction coefficient is");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Adaptivity");
-      s.adaptivity.enabled           = prm.get_bool("enabled");
-      s.adaptivity.hessian           = ritr_hessian_from(prm.get("hessian"));
-      s.adaptivity.inertia           = inertia_form_from(prm.get("inertia"));
-      s.adaptivity.projection        = predictor_projection_from(prm.get("projection"));
-      s.adaptivity.admissibility     = admissibility_from(prm.get("admissibility"));
-      s.adaptivity.measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
-      s.adaptivity.quadrature_subdivisions = prm.get_integer("quadrature subdivisions");
-      s.adaptivity.epsilon_r         = prm.get_double("epsilon r");
-      s.adaptivity.sliding_tolerance = prm.get_double("sliding tolerance");
-      s.adaptivity.max_iterations    = prm.get_integer("max iterations");
-      prm.leave_subsection();
-      prm.enter_subsection("Solver");
-      s.solver.newton_tolerance = prm.get_double("newton tolerance");
-      s.solver.static_tolerance = prm.get_double("static tolerance");
-      s.solver.max_iterations   = prm.get_integer("max iterations");
-      s.solver.threads          = prm.get_integer("threads");
-      s.solver.newton_log       = prm.get_bool("newton log");
-      const std::string projection = prm.get("hessian projection");
-      s.solver.hessian_projection  = projection == "never"    ? HessianProjection::never :
-                                     projection == "adaptive" ? HessianProjection::adaptive :
-                                                                HessianProjection::always;
-      prm.leave_subsection();
+      catch (const EntryError &e)
+        {
+          fail(e.entry, e.what());
+        }
       return s;
     }
   } // namespace

@@ -16,6 +16,18 @@ namespace ritr
     explicit InputError(const std::string &message);
   };
 
+  // A bad value of one entry of a parameter file ("Contact/dhat"), thrown where the file's
+  // name and lines are not known: its reader reports it as an InputError that names them.
+  class EntryError : public std::invalid_argument
+  {
+  public:
+    EntryError(const std::string &entry, const std::string &what)
+      : std::invalid_argument(what)
+      , entry(entry)
+    {}
+    std::string entry;
+  };
+
   // Input echoed in a message (a value, a path): escaped as above and, when longer than
   // `max_length`, cut to its start with the full length noted.
   std::string shortened(const std::string &text, std::size_t max_length = 80);

@@ -1,8 +1,10 @@
 #pragma once
 // The switches of r-adaptivity (section Adaptivity of a .prm file), typed. The paper's
-// ablations are the non-default values. The *_from() functions are the one mapping from
-// the names in a parameter file to these values; they throw std::invalid_argument for any
-// other name.
+// ablations are the non-default values. The *_names tables are the one mapping between
+// these values and their names in a parameter file; the *_from() functions throw
+// std::invalid_argument for any other name.
+#include <ritr/common/enum_names.h>
+
 #include <string>
 
 namespace ritr
@@ -41,6 +43,18 @@ namespace ritr
     physical,   // x = argmin E(., u) at every candidate mesh
     both
   };
+
+  inline constexpr EnumNames<RitrHessian, 3> ritr_hessian_names{
+    {{RitrHessian::truncated, "truncated"}, {RitrHessian::full, "full"}, {RitrHessian::filtered, "filtered"}}};
+  inline constexpr EnumNames<InertiaForm, 2> inertia_form_names{
+    {{InertiaForm::corrected, "corrected"}, {InertiaForm::uncorrected, "uncorrected"}}};
+  inline constexpr EnumNames<PredictorProjection, 2> predictor_projection_names{
+    {{PredictorProjection::in_optimization, "in-optimization"},
+     {PredictorProjection::after_optimization, "after-optimization"}}};
+  inline constexpr EnumNames<Admissibility, 4> admissibility_names{{{Admissibility::none, "none"},
+                                                                    {Admissibility::geometric, "geometric"},
+                                                                    {Admissibility::physical, "physical"},
+                                                                    {Admissibility::both, "both"}}};
 
   RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered
   InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected

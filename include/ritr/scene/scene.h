@@ -2,6 +2,9 @@
 // A scene as read from a .prm file: everything a simulation needs, validated, with no
 // deal.II types in it. Expressions (initial velocity, Dirichlet displacement, obstacle
 // motion) stay strings here and are compiled by deal.II's FunctionParser where used.
+// The default member values are the defaults of the .prm file: the subsections with a
+// struct of their own declare their entries from a default-constructed one (deal.II step-44's
+// declare_parameters/parse_parameters), parameters.cc the top-level and Gravity entries.
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
 #include <ritr/scene/adaptivity_options.h>
@@ -10,6 +13,11 @@
 #include <map>
 #include <string>
 #include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
 
 namespace ritr
 {
@@ -55,6 +63,11 @@ namespace ritr
     double      epsilon_v            = 1e-3;
     unsigned    friction_iterations  = 1;
     bool        self_contact         = true;
+
+    // Subsection Contact: its entries declared with this struct's values as defaults, and
+    // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
   };
 
   // Optimal r-adaptive in-timestep remeshing (paper Algorithm 1).
@@ -70,6 +83,11 @@ namespace ritr
     double      measure_barrier_stiffness = 0;    // 0: automatic
     unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic
     unsigned    max_iterations    = 100;
+
+    // Subsection Adaptivity: its entries declared with this struct's values as defaults, and
+    // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
   };
 
   struct SolverScene
@@ -80,6 +98,11 @@ namespace ritr
     unsigned int threads          = 0;  // 0: all cores
     bool         newton_log       = false;  // newton.csv: one row per Newton iteration
     HessianProjection hessian_projection = HessianProjection::adaptive;
+
+    // Subsection Solver: its entries declared with this struct's values as defaults, and
+    // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
   };
 
   struct Scene
@@ -95,7 +118,7 @@ namespace ritr
 
     std::vector<BodyScene>      bodies;
     std::vector<Material>       materials;  // indexed by material id
-    std::vector<double>         gravity{0, 0, 0};
+    std::vector<double>         gravity{0, -9.81, 0};
     std::string                 load_factor = "1";  // scalar expression in t
     std::vector<DirichletScene> dirichlet;
     std::vector<ObstacleScene>  obstacles;

@@ -1,4 +1,5 @@
 #pragma once
+#include <ritr/common/enum_names.h>
 
 namespace ritr
 {
@@ -14,4 +15,8 @@ namespace ritr
     adaptive  // exact while prescribed entries move, then projected until full steps stop
               // shrinking, then exact; projected only if an exact step's line search fails
   };
+
+  // Their names in a parameter file (Solver/hessian projection).
+  inline constexpr EnumNames<HessianProjection, 3> hessian_projection_names{
+    {{HessianProjection::always, "always"}, {HessianProjection::never, "never"}, {HessianProjection::adaptive, "adaptive"}}};
 } // namespace ritr

@@ -1,0 +1,43 @@
+// Subsection Adaptivity of a parameter file.
+#include <ritr/scene/parameter_text.h>
+#include <ritr/scene/scene.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace ritr
+{
+  void AdaptivityScene::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    namespace Patterns = dealii::Patterns;
+    const AdaptivityScene d;
+    prm.enter_subsection("Adaptivity");
+    prm.declare_entry("enabled", prm_value(d.enabled), Patterns::Bool(), "Optimal r-adaptive in-timestep remeshing: every step also optimises the reference node positions (one density for all bodies; Dirichlet nodes keep their reference position).");
+    prm.declare_entry("hessian", name_of(ritr_hessian_names, d.hessian), Patterns::Selection(selection(ritr_hessian_names)), "Outer Hessian: truncated (per-cell PSD blocks of d2R/du2, paper eq. 23), full (dense Schur complement with the response of x) or filtered (that response with entries below 1e-3 of the largest dropped); full and filtered are dense, for small meshes.");
+    prm.declare_entry("inertia", name_of(inertia_form_names, d.inertia), Patterns::Selection(selection(inertia_form_names)), "Inertia term: corrected (paper eq. 10) or uncorrected (eq. 8, keeps 1/2 x_pred^T M x_pred; ablation).");
+    prm.declare_entry("projection", name_of(predictor_projection_names, d.projection), Patterns::Selection(selection(predictor_projection_names)), "L2 projection of the predictor: at every candidate mesh (eq. 6) or only after the step's optimisation (ablation).");
+    prm.declare_entry("admissibility", name_of(admissibility_names, d.admissibility), Patterns::Selection(selection(admissibility_names)), "geometric: boundary sliding, measure barrier and step filter; physical: x = argmin E(., u) at every mesh (without it x and u are minimised jointly; no contact). Ablation switch of paper Fig. 8.");
+    prm.declare_entry("measure barrier stiffness", prm_value(d.measure_barrier_stiffness), Patterns::Double(0), "Stiffness of the reference area/volume barrier (eq. 21); 0: the contact barrier's stiffness, or (h^2) E / w_hat without contact.");
+    prm.declare_entry("quadrature subdivisions", prm_value(d.quadrature_subdivisions), Patterns::Integer(0), "Transfer quadrature on each candidate cell: the Witherden-Vincent rule of 5 points per direction, repeated on n^dim sub-cells (the predictor has kinks inside candidate cells, and the outer solve exploits quadrature error). 0: 64 for rods, 1 for triangles and tetrahedra.");
+    prm.declare_entry("epsilon r", prm_value(d.epsilon_r), Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
+    prm.declare_entry("sliding tolerance", prm_value(d.sliding_tolerance), Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
+    prm.declare_entry("max iterations", prm_value(d.max_iterations), Patterns::Integer(1), "Outer iterations per step.");
+    prm.leave_subsection();
+  }
+
+  // The patterns admit only the names of the tables.
+  void AdaptivityScene::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Adaptivity");
+    enabled                   = prm.get_bool("enabled");
+    hessian                   = ritr_hessian_from(prm.get("hessian"));
+    inertia                   = inertia_form_from(prm.get("inertia"));
+    projection                = predictor_projection_from(prm.get("projection"));
+    admissibility             = admissibility_from(prm.get("admissibility"));
+    measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
+    quadrature_subdivisions   = prm.get_integer("quadrature subdivisions");
+    epsilon_r                 = prm.get_double("epsilon r");
+    sliding_tolerance         = prm.get_double("sliding tolerance");
+    max_iterations            = prm.get_integer("max iterations");
+    prm.leave_subsection();
+  }
+} // namespace ritr

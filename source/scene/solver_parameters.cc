@@ -1,0 +1,35 @@
+// Subsection Solver of a parameter file.
+#include <ritr/scene/parameter_text.h>
+#include <ritr/scene/scene.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace ritr
+{
+  void SolverScene::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    namespace Patterns = dealii::Patterns;
+    const SolverScene d;
+    prm.enter_subsection("Solver");
+    prm.declare_entry("newton tolerance", prm_value(d.newton_tolerance), Patterns::Double(0), "Dynamics: stop when |dx|_inf / h < this times the bodies' bounding-box diagonal (eps_e, velocity relative to the scene's size).");
+    prm.declare_entry("static tolerance", prm_value(d.static_tolerance), Patterns::Double(0), "Statics: stop when |dx|_inf < this times the bodies' bounding-box diagonal.");
+    prm.declare_entry("max iterations", prm_value(d.max_iterations), Patterns::Integer(1), "Newton iterations per solve before the run stops (exit code 3).");
+    prm.declare_entry("hessian projection", name_of(hessian_projection_names, d.hessian_projection), Patterns::Selection(selection(hessian_projection_names)), "always: projected Newton (every element and contact stencil's Hessian projected onto the PSD cone, as in IPC; it converges only linearly where the projected Hessian differs much from the exact one, as under a sharp punch on a fine mesh); never: the exact Hessian, shifted by a multiple of the identity where it is not positive definite (quadratic convergence there, but its steps run into contact and get cut back by CCD: slower or failing on dynamic contact scenes); adaptive: the exact Hessian while prescribed nodes and obstacles move, then projected Newton until five full steps in a row fail to halve, then the exact Hessian again (projected only, for the rest of the solve, if an exact step's line search fails).");
+    prm.declare_entry("threads", prm_value(d.threads), Patterns::Integer(0), "Assembly threads (0: all cores).");
+    prm.declare_entry("newton log", prm_value(d.newton_log), Patterns::Bool(), "Also write newton.csv: one row per Newton iteration (energy, step and gradient norms, predicted decrease, CCD bound, accepted step, barrier stiffness, closest active distance), for diagnosing slow or failed solves.");
+    prm.leave_subsection();
+  }
+
+  // The pattern admits only the names of hessian_projection_names.
+  void SolverScene::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Solver");
+    newton_tolerance   = prm.get_double("newton tolerance");
+    static_tolerance   = prm.get_double("static tolerance");
+    max_iterations     = prm.get_integer("max iterations");
+    threads            = prm.get_integer("threads");
+    newton_log         = prm.get_bool("newton log");
+    hessian_projection = value_named(hessian_projection_names, prm.get("hessian projection"), "Hessian projection");
+    prm.leave_subsection();
+  }
+} // namespace ritr
