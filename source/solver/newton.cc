@@ -46,7 +46,7 @@ namespace ritr
     // ~1e-12, where neither Hessian makes progress afterwards; exact steps keep them open.
     const bool   adaptive           = settings.projection == HessianProjection::adaptive;
     bool         exact              = settings.projection == HessianProjection::never;
-    bool         exact_while_moving = adaptive;
+    bool         exact_while_moving = adaptive && settings.exact_while_moving;
     unsigned int crawling           = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
 
