@@ -42,12 +42,9 @@ namespace ritr
     Eigen::SparseMatrix<double> reduced(n_free, n_free);
     Triplets                    reduced_triplets;
     // Adaptive projection: projected Newton until it crawls, then the exact Hessian.
-    // While prescribed entries move, projected Newton lets gaps under sharp corners close to
-    // ~1e-12, where neither Hessian makes progress afterwards; exact steps keep them open.
-    const bool   adaptive           = settings.projection == HessianProjection::adaptive;
-    bool         exact              = settings.projection == HessianProjection::never;
-    bool         exact_while_moving = adaptive && settings.exact_while_moving;
-    unsigned int crawling           = 0;
+    const bool   adaptive = settings.projection == HessianProjection::adaptive;
+    bool         exact    = settings.projection == HessianProjection::never;
+    unsigned int crawling = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
 
     for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations)
@@ -71,9 +68,8 @@ namespace ritr
               dz[i] = targets[i] - z[i];
               kinematic_pending |= dz[i] != 0.0;
             }
-        const bool use_exact = exact || (exact_while_moving && kinematic_pending);
         h.clear();
-        objective.hessian(z, h, !use_exact);
+        objective.hessian(z, h, !exact);
         Eigen::VectorXd rhs(n_free);
         for (Eigen::Index i = 0; i < n; ++i)
           if (free_index[i] >= 0)
@@ -106,7 +102,7 @@ namespace ritr
         // A step from a shifted Hessian is small because of the shift, not because z is near
         // the minimum (the barrier's negative curvature at tiny gaps forces huge shifts): it
         // does not count as converged.
-        if (!kinematic_pending && result.last_step_norm <= settings.tolerance && !(use_exact && shift > 0))
+        if (!kinematic_pending && result.last_step_norm <= settings.tolerance && !(exact && shift > 0))
           {
             result.converged = true;
             return result;
@@ -136,7 +132,7 @@ namespace ritr
                     result.converged = true;
                     return result;
                   }
-                if (use_exact && adaptive)
+                if (exact && adaptive)
                   break;  // back to projected Newton below, from the same z
                 result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
                 return result;
@@ -166,8 +162,8 @@ namespace ritr
           }
         if (alpha < settings.min_step)
           {
-            exact = exact_while_moving = false;
-            crawling                   = 0;
+            exact    = false;
+            crawling = 0;
             continue;
           }
         z = trial;
@@ -178,7 +174,7 @@ namespace ritr
               z[i] = targets[i];
         if (settings.monitor)
           settings.monitor({result.iterations, e0, trial_energy - e0, decrease, result.last_step_norm,
-                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift, use_exact},
+                            gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift, exact},
                            z);
         // Full steps whose length does not shrink: the projected Hessian is a poor model of the
         // energy here and Newton has become linear; the exact Hessian restores quadratic steps.

@@ -113,8 +113,7 @@ namespace ritr
     ContactPotential<dim> *contact = problem.contact.get();
     ImplicitStepSettings step_settings;
     step_settings.newton.max_iterations = scene.solver.max_iterations;
-    step_settings.newton.projection         = scene.solver.hessian_projection;
-    step_settings.newton.exact_while_moving = !scene.dynamic();
+    step_settings.newton.projection = scene.solver.hessian_projection;
     // Both tolerances are relative to the bodies' size, so that a scene means the same in any
     // unit; obstacles (a ground plane may be any size) do not count.
     const double length = bounding_box_diagonal<dim>(problem.initial_reference);

@@ -12,8 +12,8 @@ namespace ritr
   {
     always,   // projected Newton
     never,    // exact Hessian, shifted by a multiple of the identity where indefinite
-    adaptive  // exact while prescribed entries move, then projected until full steps stop
-              // shrinking, then exact; projected only if an exact step's line search fails
+    adaptive  // projected until full steps stop shrinking, then exact; projected again for
+              // the rest of the solve if an exact step's line search fails
   };
 
   // Their names in a parameter file (Solver/hessian projection).

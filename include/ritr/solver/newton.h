@@ -63,10 +63,6 @@ namespace ritr
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
     HessianProjection projection = HessianProjection::always;
     unsigned int crawl_iterations = 5;  // adaptive: full, non-shrinking steps before switching
-    // adaptive: exact steps also while prescribed entries move. Statics move a whole load
-    // increment inside one solve; in dynamics (inertia keeps the Hessian definite, the
-    // motion is one step's) it made the masticator's fixed meshes stop earlier.
-    bool exact_while_moving = true;
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
   };
