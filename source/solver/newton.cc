@@ -42,7 +42,7 @@ namespace ritr
     Eigen::SparseMatrix<double> reduced(n_free, n_free);
     Triplets                    reduced_triplets;
     // Adaptive projection: projected Newton until it crawls, then the exact Hessian.
-    const bool   adaptive = settings.projection == HessianProjection::adaptive;
+    bool         adaptive = settings.projection == HessianProjection::adaptive;  // may still switch
     bool         exact    = settings.projection == HessianProjection::never;
     unsigned int crawling = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
@@ -132,8 +132,8 @@ namespace ritr
                     result.converged = true;
                     return result;
                   }
-                if (exact && adaptive)
-                  break;  // back to projected Newton below, from the same z
+                if (exact && settings.projection == HessianProjection::adaptive)
+                  break;  // projected Newton for the rest of the solve, from the same z
                 result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
                 return result;
               }
@@ -162,8 +162,7 @@ namespace ritr
           }
         if (alpha < settings.min_step)
           {
-            exact    = false;
-            crawling = 0;
+            exact = adaptive = false;
             continue;
           }
         z = trial;
