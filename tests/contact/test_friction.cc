@@ -12,9 +12,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
-using ritr::log_barrier;
 using ritr::log_barrier_derivative;
-using ritr::log_barrier_second_derivative;
 using namespace ritr::contact;
 using namespace ritr::contact::test_support;
 
