@@ -1,6 +1,7 @@
 #include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/common/psd_projection.h>
 #include <ritr/common/wall_clock.h>
+#include <ritr/solver/steihaug_cg.h>
 
 #include <Eigen/Dense>
 
@@ -193,7 +194,9 @@ namespace ritr
     objective_.set_measure_barrier(settings_.geometric_admissibility ? kappa_w : 0.0, w_hat_);
     r.initial_objective = r.objective = objective_.value(r.z, r.u);
 
-    if (settings_.physical_admissibility)
+    if (settings_.physical_admissibility && settings_.hessian == RitrHessian::reduced)
+      trust_region_solve(targets, r);
+    else if (settings_.physical_admissibility)
       nested_solve(targets, r);
     else
       joint_solve(targets, r);
@@ -282,6 +285,108 @@ namespace ritr
       r.z = z_trial;
     };
     descend(r, direction, evaluate, accept);
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::trust_region_solve(const Eigen::VectorXd &targets, Result &r)
+  {
+    // Radii are Euclidean norms of the reference step; the first is the old fixed cap, half the
+    // smallest initial cell, and the region may grow to a hundred of them.
+    const double initial_radius = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
+    const double max_radius     = 100 * initial_radius;
+    double       radius         = initial_radius;
+    double       first_gradient = 0;
+    Eigen::VectorXd u_trial, z_trial;
+    for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
+      {
+        objective_.set_candidate(r.u);
+        const auto d = objective_.derivatives(r.z, r.u, ReferenceBlock::exact, true);
+        const Eigen::VectorXd g = basis_.transpose() * d.gu;
+        const double g_norm = g.norm();
+        if (r.outer_iterations == 0)
+          first_gradient = g_norm;
+        std::optional<ReducedHessian> hessian;
+        {
+          ScopedTimer timer(r.outer_solve_seconds);
+          hessian.emplace(d.huu, d.hxx, d.hxu, r.z.size(), free_state_, basis_, state_cholesky_);
+        }
+        // Inexact Newton: the CG residual relative to |g| shrinks with |g| (superlinear
+        // convergence without oversolving far from the minimum).
+        const double forcing = std::min(0.1, std::sqrt(g_norm / std::max(first_gradient, 1e-300)));
+        const auto   apply   = [&](const Eigen::VectorXd &p) { return hessian->apply(p); };
+        const double round_off = 1e-13 * std::max(1.0, std::abs(r.objective));
+        bool accepted = false;
+        while (!accepted)
+          {
+            SteihaugResult cg;
+            {
+              ScopedTimer timer(r.outer_solve_seconds);
+              cg = steihaug_cg(apply, g, radius, forcing * g_norm, std::max<Eigen::Index>(g.size(), 1));
+            }
+            r.cg_iterations += cg.iterations;
+            Eigen::VectorXd du = basis_ * cg.step;
+            // A Newton step (CG converged inside the region) below epsilon_r: converged, once
+            // a tight solve confirms it (a loose CG residual may hide the soft directions
+            // behind a stiff one, such as a cell inside the measure barrier).
+            if (cg.interior && du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r && forcing > 1e-8)
+              {
+                ScopedTimer timer(r.outer_solve_seconds);
+                cg = steihaug_cg(apply, g, radius, 1e-8 * g_norm, 10 * std::max<Eigen::Index>(g.size(), 1));
+                r.cg_iterations += cg.iterations;
+                du = basis_ * cg.step;
+              }
+            if (cg.interior && du.lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
+              {
+                r.stop = OuterStop::converged;
+                return;
+              }
+            // The reference mesh stays admissible: the step is cut, and so is its model.
+            const double    alpha = step_filter(r.u, du);
+            const Eigen::VectorXd p = alpha * cg.step;
+            du *= alpha;
+            const double predicted = g.dot(p) + 0.5 * p.dot(hessian->apply(p));
+            if (!(predicted < -round_off))
+              {
+                // R cannot resolve the step: flat to round-off (a Newton step) or stuck.
+                r.stop = cg.interior ? OuterStop::converged : OuterStop::line_search_failed;
+                return;
+              }
+            ++r.line_search_trials;
+            u_trial = r.u + du;
+            // The state at the trial mesh to first order, kept short of any contact.
+            Eigen::VectorXd dz = hessian->state_response(p);
+            if (contact_)
+              dz *= std::min(1.0, 0.9 * contact_->max_step(r.z, dz));
+            z_trial = r.z + dz;
+            bool solved = solve_on_mesh(u_trial, z_trial, targets, r);
+            if (!solved)
+              {
+                z_trial = r.z;  // a poor prediction: the warm start of the backtracking path
+                solved  = solve_on_mesh(u_trial, z_trial, targets, r);
+              }
+            const double trial_objective = solved ? objective_.value(z_trial, u_trial) :
+                                                    std::numeric_limits<double>::infinity();
+            const double rho = (trial_objective - r.objective) / predicted;
+            const double step_norm = p.norm();
+            if (!(rho >= 0.25))
+              radius = 0.25 * step_norm;
+            else if (rho > 0.75 && step_norm >= 0.99 * radius)
+              radius = std::min(2 * radius, max_radius);
+            accepted = rho >= 0.05 && trial_objective <= r.objective;
+            if (accepted)
+              {
+                r.u         = u_trial;
+                r.z         = z_trial;
+                r.objective = trial_objective;
+              }
+            else if (radius <= 1e-3 * settings_.epsilon_r)
+              {
+                r.stop = OuterStop::line_search_failed;  // no trial region small enough helped
+                return;
+              }
+          }
+      }
+    r.stop = OuterStop::iteration_limit;
   }
 
   template <int dim>

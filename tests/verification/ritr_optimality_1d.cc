@@ -154,3 +154,14 @@ TEST(RitrOptimality1D, TruncatedHessianReachesTheSameMesh)
   std::cout << "outer iterations / seconds: full " << full.first << " / " << full.second << ", truncated "
             << truncated.first << " / " << truncated.second << std::endl;
 }
+
+// The trust-region Newton-CG on the matrix-free reduced Hessian reaches the brute-force mesh
+// too, in no more outer iterations than the dense full Hessian with backtracking.
+TEST(RitrOptimality1D, ReducedHessianTrustRegionMatchesBruteForceMinimum)
+{
+  const auto full    = check_optimality(RitrHessian::full);
+  const auto reduced = check_optimality(RitrHessian::reduced);
+  std::cout << "outer iterations / seconds: full " << full.first << " / " << full.second << ", reduced "
+            << reduced.first << " / " << reduced.second << std::endl;
+  EXPECT_LE(reduced.first, full.first);
+}

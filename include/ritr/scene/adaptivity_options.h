@@ -15,12 +15,15 @@ namespace ritr
   // rod). It is factorized with a diagonal shift where it is indefinite. `full` adds the
   // implicit response of x, -H_ux H_xx^{-1} H_xu, and projects the result as a whole;
   // `filtered` keeps only the entries of the response dx/du above a relative threshold.
-  // Both of the latter are dense: for small meshes and for comparison only.
+  // Both of the latter are dense: for small meshes and for comparison only. `reduced` applies
+  // the exact reduced Hessian matrix-free (reduced_hessian.h) inside a trust-region Newton-CG
+  // that follows its negative curvature instead of shifting it away.
   enum class RitrHessian
   {
     truncated,
     full,
-    filtered
+    filtered,
+    reduced
   };
 
   enum class InertiaForm
@@ -44,8 +47,10 @@ namespace ritr
     both
   };
 
-  inline constexpr EnumNames<RitrHessian, 3> ritr_hessian_names{
-    {{RitrHessian::truncated, "truncated"}, {RitrHessian::full, "full"}, {RitrHessian::filtered, "filtered"}}};
+  inline constexpr EnumNames<RitrHessian, 4> ritr_hessian_names{{{RitrHessian::truncated, "truncated"},
+                                                                  {RitrHessian::full, "full"},
+                                                                  {RitrHessian::filtered, "filtered"},
+                                                                  {RitrHessian::reduced, "reduced"}}};
   inline constexpr EnumNames<InertiaForm, 2> inertia_form_names{
     {{InertiaForm::corrected, "corrected"}, {InertiaForm::uncorrected, "uncorrected"}}};
   inline constexpr EnumNames<PredictorProjection, 2> predictor_projection_names{
@@ -56,7 +61,7 @@ namespace ritr
                                                                     {Admissibility::physical, "physical"},
                                                                     {Admissibility::both, "both"}}};
 
-  RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered
+  RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered|reduced
   InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected
   PredictorProjection predictor_projection_from(const std::string &name);  // in-|after-optimization
   Admissibility       admissibility_from(const std::string &name);         // none|geometric|physical|both

@@ -1,0 +1,44 @@
+#pragma once
+// The exact Hessian of u -> R(x(u), u) with x(u) = argmin E(., u), in the sliding basis B:
+//
+//   S = B^T (H_uu - H_xu^T H_xx^-1 H_xu) B      (H_xx, H_xu restricted to the free state)
+//
+// applied matrix-free: one sparse Cholesky factorization of H_xx per outer iteration, then a
+// back-substitution per product. The same factor gives the implicit-function response of x,
+// dx = -H_xx^-1 H_xu B p, which predicts the state at a trial mesh.
+#include <ritr/solver/newton.h>
+#include <ritr/solver/sparse_cholesky.h>
+
+#include <Eigen/Sparse>
+
+#include <vector>
+
+namespace ritr
+{
+  class ReducedHessian
+  {
+  public:
+    // Blocks as assembled by RitrObjective::derivatives (state numbering for x, n_z entries;
+    // reference numbering for u, basis.rows() entries); `free_state` lists the state entries
+    // that are not prescribed. Reuses `cholesky`'s symbolic analysis while the pattern holds.
+    ReducedHessian(const Triplets &huu, const Triplets &hxx, const Triplets &hxu, Eigen::Index n_z,
+                   const std::vector<int> &free_state, const Eigen::SparseMatrix<double> &basis,
+                   SparseCholesky &cholesky);
+
+    // S p for p in basis coordinates.
+    Eigen::VectorXd apply(const Eigen::VectorXd &p) const;
+    // The first-order change of the whole state z for the reference step B p (prescribed
+    // entries do not move).
+    Eigen::VectorXd state_response(const Eigen::VectorXd &p) const;
+    // Multiple of the identity that had to be added to H_xx (0: it was positive definite).
+    double state_shift() const { return shift_; }
+
+  private:
+    Eigen::SparseMatrix<double> huu_;       // B^T H_uu B
+    Eigen::SparseMatrix<double> coupling_;  // H_xu B on the free state rows
+    const std::vector<int>     &free_state_;
+    Eigen::Index                n_z_;
+    SparseCholesky             &cholesky_;
+    double                      shift_ = 0;
+  };
+} // namespace ritr

@@ -1,0 +1,25 @@
+#pragma once
+// The trust-region subproblem min_p g.p + 1/2 p.S p subject to |p|_2 <= radius, solved
+// approximately by Steihaug's truncated conjugate gradients: CG from p = 0 until the residual
+// falls below `tolerance`, a direction of non-positive curvature appears or an iterate leaves
+// the trust region; the last two end on the region's boundary. S is only applied, never
+// formed, so it may be a Schur complement that costs a back-substitution per product.
+#include <Eigen/Core>
+
+#include <functional>
+
+namespace ritr
+{
+  struct SteihaugResult
+  {
+    Eigen::VectorXd step;
+    double          predicted_change = 0;  // g.p + 1/2 p.S p (negative)
+    bool            interior   = false;  // CG converged inside the region (a Newton step)
+    bool            negative_curvature = false;  // stopped on a direction with d.S d <= 0
+    unsigned int    iterations = 0;       // products with S
+  };
+
+  SteihaugResult steihaug_cg(const std::function<Eigen::VectorXd(const Eigen::VectorXd &)> &apply,
+                             const Eigen::VectorXd &g, double radius, double tolerance,
+                             unsigned int max_iterations);
+} // namespace ritr

@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""The r-ITR outer solve, compared across outer Hessians and tolerances on one scene.
+
+    scripts/outer_solve.py SCENE.prm --ritr build/ritr [--hessian truncated reduced]
+                           [--epsilon 1e-4 1e-6] [--end-time T] [--work DIR]
+
+For every (epsilon r, hessian) pair the scene runs once, in turn, in its own process; at
+epsilon r 1e-6 the outer iteration limit is raised to 200. From each log.csv: the steps that
+ended on the iteration limit, the mean outer iterations, inner Newton iterations and trials,
+the total decrease of R over the steps (sum of initial_objective - energy) and the wall time
+of the steps. Later rows start from other states than earlier ones, so the decrease of R is
+a sum of per-step gains, comparable between runs of one table. Ratios are taken within one
+epsilon r against the first hessian named. The exit code is 1 if a run failed.
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from prm_variant import entries, write_variant  # noqa: E402
+
+
+def summarize(log_csv, limit):
+    rows = list(csv.DictReader(open(log_csv)))
+    outer = [int(r["outer_iterations"]) for r in rows]
+    return {
+        "steps": len(rows),
+        "at_limit": sum(o >= limit for o in outer),
+        "mean_outer": sum(outer) / max(len(rows), 1),
+        "inner": sum(int(r["inner_newton_iterations"]) for r in rows),
+        "trials": sum(int(r["line_search_trials"]) for r in rows),
+        "decrease": sum(float(r["initial_objective"]) - float(r["energy"]) for r in rows),
+        "wall": sum(float(r["wall_seconds"]) for r in rows),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("scene")
+    parser.add_argument("--ritr", required=True)
+    parser.add_argument("--hessian", nargs="+", default=["truncated", "reduced"])
+    parser.add_argument("--epsilon", nargs="+", default=["1e-4", "1e-6"])
+    parser.add_argument("--end-time")
+    parser.add_argument("--work", default=None)
+    args = parser.parse_args()
+    work = args.work or tempfile.mkdtemp(prefix="outer_solve_")
+    os.makedirs(work, exist_ok=True)
+    failed = False
+    print(f"{'epsilon r':>9} {'hessian':>10} {'steps':>5} {'at limit':>8} {'outer/step':>10} {'inner':>7} "
+          f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'wall ratio':>10} {'decrease ratio':>14}")
+    for epsilon in args.epsilon:
+        base = None
+        for hessian in args.hessian:
+            name = f"{hessian}_{epsilon}"
+            limit = 200 if float(epsilon) < 1e-5 else None
+            overrides = {"output directory": os.path.join(work, name), "output every": "1000000",
+                         "Adaptivity/enabled": "true", "Adaptivity/hessian": hessian,
+                         "Adaptivity/epsilon r": epsilon}
+            if limit:
+                overrides["Adaptivity/max iterations"] = str(limit)
+            if args.end_time:
+                overrides["end time"] = args.end_time
+            prm = os.path.join(work, name + ".prm")
+            write_variant(args.scene, overrides, prm)
+            limit = limit or int(entries(open(prm).read()).get("Adaptivity/max iterations", "200"))
+            with open(os.path.join(work, name + ".out"), "w") as log:
+                code = subprocess.call([args.ritr, prm], stdout=log, stderr=subprocess.STDOUT)
+            if code != 0:
+                failed = True
+                print(f"{epsilon:>9} {hessian:>10} failed with exit code {code}")
+                continue
+            s = summarize(os.path.join(work, name, "log.csv"), limit)
+            base = base or s
+            print(f"{epsilon:>9} {hessian:>10} {s['steps']:>5} {s['at_limit']:>8} {s['mean_outer']:>10.1f} "
+                  f"{s['inner']:>7} {s['trials']:>6} {s['decrease']:>11.3e} {s['wall']:>8.1f} "
+                  f"{s['wall'] / base['wall']:>10.2f} {s['decrease'] / base['decrease']:>14.2f}", flush=True)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

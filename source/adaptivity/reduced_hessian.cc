@@ -1,0 +1,53 @@
+#include <ritr/adaptivity/reduced_hessian.h>
+
+namespace ritr
+{
+  ReducedHessian::ReducedHessian(const Triplets &huu, const Triplets &hxx, const Triplets &hxu, const Eigen::Index n_z,
+                                 const std::vector<int> &free_state, const Eigen::SparseMatrix<double> &basis,
+                                 SparseCholesky &cholesky)
+    : free_state_(free_state)
+    , n_z_(n_z)
+    , cholesky_(cholesky)
+  {
+    const Eigen::Index n_u = basis.rows(), n_f = free_state.size();
+    std::vector<int>   free_index(n_z, -1);
+    for (Eigen::Index a = 0; a < n_f; ++a)
+      free_index[free_state[a]] = a;
+
+    Eigen::SparseMatrix<double> h(n_u, n_u);
+    h.setFromTriplets(huu.begin(), huu.end());
+    huu_ = basis.transpose() * h * basis;
+
+    Triplets free_xx, free_xu;
+    for (const auto &t : hxx)
+      {
+        const int r = free_index[t.row()], c = free_index[t.col()];
+        if (r >= 0 && c >= 0 && r >= c)
+          free_xx.emplace_back(r, c, t.value());
+      }
+    for (const auto &t : hxu)
+      if (free_index[t.row()] >= 0)
+        free_xu.emplace_back(free_index[t.row()], t.col(), t.value());
+    Eigen::SparseMatrix<double> xx(n_f, n_f), xu(n_f, n_u);
+    xx.setFromTriplets(free_xx.begin(), free_xx.end());
+    xx.makeCompressed();
+    xu.setFromTriplets(free_xu.begin(), free_xu.end());
+    coupling_ = xu * basis;
+    shift_    = cholesky_.factorize(xx);
+  }
+
+  Eigen::VectorXd ReducedHessian::apply(const Eigen::VectorXd &p) const
+  {
+    const Eigen::VectorXd response = cholesky_.solve(coupling_ * p);  // -dx on the free state
+    return huu_ * p - coupling_.transpose() * response;
+  }
+
+  Eigen::VectorXd ReducedHessian::state_response(const Eigen::VectorXd &p) const
+  {
+    const Eigen::VectorXd response = cholesky_.solve(coupling_ * p);
+    Eigen::VectorXd       dz       = Eigen::VectorXd::Zero(n_z_);
+    for (std::size_t a = 0; a < free_state_.size(); ++a)
+      dz[free_state_[a]] = -response[a];
+    return dz;
+  }
+} // namespace ritr

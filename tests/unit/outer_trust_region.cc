@@ -1,0 +1,131 @@
+// The pieces of the trust-region outer step: Steihaug's truncated CG against dense linear
+// algebra (interior Newton step, boundary steps, negative curvature), and the matrix-free
+// reduced Hessian against the dense Schur complement it stands for.
+#include <ritr/adaptivity/reduced_hessian.h>
+#include <ritr/solver/steihaug_cg.h>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace ritr;
+
+namespace
+{
+  Eigen::MatrixXd random_symmetric(const int n, const double diagonal_shift, const unsigned seed)
+  {
+    std::mt19937                           rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Eigen::MatrixXd                        a(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        a(i, j) = u(rng);
+    return 0.5 * (a + a.transpose()) + diagonal_shift * Eigen::MatrixXd::Identity(n, n);
+  }
+
+  Eigen::VectorXd random_vector(const int n, const unsigned seed)
+  {
+    std::mt19937                           rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Eigen::VectorXd                        v(n);
+    for (int i = 0; i < n; ++i)
+      v[i] = u(rng);
+    return v;
+  }
+
+  double model(const Eigen::MatrixXd &S, const Eigen::VectorXd &g, const Eigen::VectorXd &p)
+  {
+    return g.dot(p) + 0.5 * p.dot(S * p);
+  }
+} // namespace
+
+TEST(SteihaugCG, InsideALargeRegionItIsTheNewtonStep)
+{
+  const Eigen::MatrixXd S = random_symmetric(12, 8.0, 1);  // positive definite
+  ASSERT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues().minCoeff(), 0);
+  const Eigen::VectorXd g = random_vector(12, 2);
+  const auto r = steihaug_cg([&](const Eigen::VectorXd &p) { return Eigen::VectorXd(S * p); }, g, 1e6, 1e-12 * g.norm(), 100);
+  const Eigen::VectorXd newton = -S.ldlt().solve(g);
+  EXPECT_TRUE(r.interior);
+  EXPECT_FALSE(r.negative_curvature);
+  EXPECT_LT((r.step - newton).norm(), 1e-10 * newton.norm());
+  EXPECT_NEAR(r.predicted_change, model(S, g, r.step), 1e-12 * std::abs(r.predicted_change));
+}
+
+TEST(SteihaugCG, ASmallRegionEndsOnItsBoundaryBelowTheCauchyPoint)
+{
+  const Eigen::MatrixXd S = random_symmetric(12, 8.0, 3);
+  const Eigen::VectorXd g = random_vector(12, 4);
+  const double radius = 0.1 * S.ldlt().solve(g).norm();
+  const auto r = steihaug_cg([&](const Eigen::VectorXd &p) { return Eigen::VectorXd(S * p); }, g, radius, 1e-12, 100);
+  EXPECT_FALSE(r.interior);
+  EXPECT_NEAR(r.step.norm(), radius, 1e-12 * radius);
+  // The Cauchy point: the model's minimum along -g within the region.
+  const double          gSg    = g.dot(S * g);
+  const double          tau    = std::min(g.squaredNorm() / gSg, radius / g.norm());
+  const Eigen::VectorXd cauchy = -tau * g;
+  EXPECT_LE(model(S, g, r.step), model(S, g, cauchy) + 1e-14);
+  EXPECT_NEAR(r.predicted_change, model(S, g, r.step), 1e-12 * std::abs(r.predicted_change));
+}
+
+TEST(SteihaugCG, NegativeCurvatureIsFollowedToTheBoundary)
+{
+  const Eigen::MatrixXd S = random_symmetric(12, -0.5, 5);
+  ASSERT_LT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues().minCoeff(), 0);
+  const Eigen::VectorXd g = random_vector(12, 6);
+  const double radius = 3.0;
+  const auto r = steihaug_cg([&](const Eigen::VectorXd &p) { return Eigen::VectorXd(S * p); }, g, radius, 1e-12, 100);
+  EXPECT_FALSE(r.interior);
+  EXPECT_NEAR(r.step.norm(), radius, 1e-12 * radius);
+  EXPECT_LT(r.predicted_change, 0);
+  EXPECT_NEAR(r.predicted_change, model(S, g, r.step), 1e-12 * std::abs(r.predicted_change));
+}
+
+TEST(ReducedHessian, MatchesTheDenseSchurComplement)
+{
+  // State of 10 entries, 2 of them prescribed; reference of 8 entries moving in a basis of 5.
+  const int       n_z = 10, n_u = 8, n_b = 5;
+  const std::vector<int> free_state{0, 1, 2, 4, 5, 6, 8, 9};
+  const Eigen::MatrixXd hxx = random_symmetric(n_z, 12.0, 7);  // positive definite
+  const Eigen::MatrixXd huu = random_symmetric(n_u, 0.0, 8);
+  Eigen::MatrixXd       hxu(n_z, n_u);
+  for (int j = 0; j < n_u; ++j)
+    hxu.col(j) = random_vector(n_z, 20 + j);
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(n_u, n_b);  // sliding-like: unit and tangent columns
+  basis(0, 0) = 1, basis(1, 1) = 1, basis(2, 2) = 0.6, basis(3, 2) = 0.8, basis(5, 3) = 1, basis(7, 4) = 1;
+
+  const auto triplets = [](const Eigen::MatrixXd &m) {
+    Triplets t;
+    for (int i = 0; i < m.rows(); ++i)
+      for (int j = 0; j < m.cols(); ++j)
+        t.emplace_back(i, j, m(i, j));
+    return t;
+  };
+  SparseCholesky cholesky;
+  const Eigen::SparseMatrix<double> sparse_basis = basis.sparseView();
+  const ReducedHessian S(triplets(huu), triplets(hxx), triplets(hxu), n_z, free_state, sparse_basis, cholesky);
+  EXPECT_EQ(S.state_shift(), 0.0);
+
+  const int       n_f = free_state.size();
+  Eigen::MatrixXd hxx_f(n_f, n_f), hxu_f(n_f, n_u);
+  for (int a = 0; a < n_f; ++a)
+    {
+      hxu_f.row(a) = hxu.row(free_state[a]);
+      for (int b = 0; b < n_f; ++b)
+        hxx_f(a, b) = hxx(free_state[a], free_state[b]);
+    }
+  const Eigen::MatrixXd dense = basis.transpose() * (huu - hxu_f.transpose() * hxx_f.ldlt().solve(hxu_f)) * basis;
+  for (unsigned seed = 40; seed < 43; ++seed)
+    {
+      const Eigen::VectorXd p = random_vector(n_b, seed);
+      EXPECT_LT((S.apply(p) - dense * p).norm(), 1e-12 * (dense * p).norm());
+      // The response of the state: -H_xx^-1 H_xu B p on the free entries, 0 on prescribed ones.
+      const Eigen::VectorXd response = -hxx_f.ldlt().solve(hxu_f * (basis * p));
+      const Eigen::VectorXd dz       = S.state_response(p);
+      EXPECT_EQ(dz[3], 0.0);
+      EXPECT_EQ(dz[7], 0.0);
+      for (int a = 0; a < n_f; ++a)
+        EXPECT_NEAR(dz[free_state[a]], response[a], 1e-12 * response.norm());
+    }
+}
