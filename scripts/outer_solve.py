@@ -5,10 +5,9 @@
                            [--epsilon 1e-4 1e-6] [--end-time T] [--work DIR]
 
 For every (epsilon r, hessian) pair the scene runs once, in turn, in its own process; at
-epsilon r 1e-6 the outer iteration limit is raised to 200. From each log.csv: the steps that
-ended on the iteration limit, the mean outer iterations, inner Newton iterations and trials,
+epsilon r below 1e-5 the outer iteration limit is raised to 200. From each log.csv: the mean outer iterations, inner Newton iterations and trials,
 the total decrease of R over the steps (sum of initial_objective - energy) and the wall time
-of the steps. Later rows start from other states than earlier ones, so the decrease of R is
+of the steps, and why each step's outer iteration ended (log.csv's outer_stop). Later rows start from other states than earlier ones, so the decrease of R is
 a sum of per-step gains, comparable between runs of one table. Ratios are taken within one
 epsilon r against the first hessian named. The exit code is 1 if a run failed.
 """
@@ -20,15 +19,19 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from prm_variant import entries, write_variant  # noqa: E402
+from prm_variant import write_variant  # noqa: E402
 
 
-def summarize(log_csv, limit):
+def summarize(log_csv):
     rows = list(csv.DictReader(open(log_csv)))
     outer = [int(r["outer_iterations"]) for r in rows]
+    stops = [r["outer_stop"] for r in rows]
     return {
         "steps": len(rows),
-        "at_limit": sum(o >= limit for o in outer),
+        "converged": stops.count("converged"),
+        "small_decrease": stops.count("small_decrease"),
+        "no_decrease": stops.count("no_decrease"),
+        "at_limit": stops.count("iteration_limit"),
         "mean_outer": sum(outer) / max(len(rows), 1),
         "inner": sum(int(r["inner_newton_iterations"]) for r in rows),
         "trials": sum(int(r["line_search_trials"]) for r in rows),
@@ -49,7 +52,8 @@ def main():
     work = args.work or tempfile.mkdtemp(prefix="outer_solve_")
     os.makedirs(work, exist_ok=True)
     failed = False
-    print(f"{'epsilon r':>9} {'hessian':>10} {'steps':>5} {'at limit':>8} {'outer/step':>10} {'inner':>7} "
+    print(f"{'epsilon r':>9} {'hessian':>10} {'steps':>5} {'converged':>9} {'small dec.':>10} {'no decr.':>8} {'at limit':>8} "
+          f"{'outer/step':>10} {'inner':>7} "
           f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'wall ratio':>10} {'decrease ratio':>14}")
     for epsilon in args.epsilon:
         base = None
@@ -65,16 +69,16 @@ def main():
                 overrides["end time"] = args.end_time
             prm = os.path.join(work, name + ".prm")
             write_variant(args.scene, overrides, prm)
-            limit = limit or int(entries(open(prm).read()).get("Adaptivity/max iterations", "200"))
             with open(os.path.join(work, name + ".out"), "w") as log:
                 code = subprocess.call([args.ritr, prm], stdout=log, stderr=subprocess.STDOUT)
             if code != 0:
                 failed = True
                 print(f"{epsilon:>9} {hessian:>10} failed with exit code {code}")
                 continue
-            s = summarize(os.path.join(work, name, "log.csv"), limit)
+            s = summarize(os.path.join(work, name, "log.csv"))
             base = base or s
-            print(f"{epsilon:>9} {hessian:>10} {s['steps']:>5} {s['at_limit']:>8} {s['mean_outer']:>10.1f} "
+            print(f"{epsilon:>9} {hessian:>10} {s['steps']:>5} {s['converged']:>9} {s['small_decrease']:>10} {s['no_decrease']:>8} "
+                  f"{s['at_limit']:>8} {s['mean_outer']:>10.1f} "
                   f"{s['inner']:>7} {s['trials']:>6} {s['decrease']:>11.3e} {s['wall']:>8.1f} "
                   f"{s['wall'] / base['wall']:>10.2f} {s['decrease'] / base['decrease']:>14.2f}", flush=True)
     return 1 if failed else 0

@@ -18,7 +18,7 @@ namespace ritr
   namespace
   {
     constexpr char          magic[8]   = {'R', 'I', 'T', 'R', 'C', 'K', 'P', 'T'};
-    constexpr std::uint32_t version    = 1;
+    constexpr std::uint32_t version    = 2;  // 2: steps carry the outer stop
     constexpr std::uint32_t byte_order = 0x01020304;
     constexpr std::size_t   header_size = sizeof(magic) + 2 * sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -110,6 +110,7 @@ namespace ritr
                              r.outer_solve_seconds, r.min_distance, r.min_reference_measure,
                              r.min_deformed_jacobian, r.wall_seconds})
         w.put(q);
+      w.put<std::uint32_t>(r.outer_stop ? 1 + static_cast<std::uint32_t>(*r.outer_stop) : 0);  // 0: fixed mesh
     }
 
     StepReport get_report(Reader &in)
@@ -125,10 +126,12 @@ namespace ritr
                         &r.outer_solve_seconds, &r.min_distance, &r.min_reference_measure,
                         &r.min_deformed_jacobian, &r.wall_seconds})
         *q = in.get<double>();
+      if (const auto stop = in.get<std::uint32_t>(); stop > 0)
+        r.outer_stop = static_cast<OuterStop>(stop - 1);
       return r;
     }
 
-    constexpr std::size_t report_size = 4 * sizeof(std::uint32_t) + 11 * sizeof(double);
+    constexpr std::size_t report_size = 5 * sizeof(std::uint32_t) + 11 * sizeof(double);
   } // namespace
 
   std::uint64_t fnv1a(const void *data, const std::size_t bytes, std::uint64_t hash)

@@ -43,7 +43,7 @@ namespace ritr
     Triplets                    reduced_triplets;
     // Adaptive projection: projected Newton until it crawls, then the exact Hessian.
     bool         adaptive = settings.projection == HessianProjection::adaptive;  // may still switch
-    bool         exact    = settings.projection == HessianProjection::never;
+    bool         exact    = settings.projection == HessianProjection::never || (adaptive && settings.start_exact);
     unsigned int crawling = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
 

@@ -15,12 +15,15 @@ namespace ritr
 
   template <int dim>
   typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
-                                                                      const Eigen::VectorXd &targets)
+                                                                      const Eigen::VectorXd &targets,
+                                                                      const bool near_solution)
   {
     reference_ = u;
     if (contact_)
       contact_->set_reference(u);
-    const NewtonResult r = newton_.minimize(potential_, z, kinematic_, targets, settings_.newton);
+    NewtonSettings newton = settings_.newton;
+    newton.start_exact    = near_solution;
+    const NewtonResult r  = newton_.minimize(potential_, z, kinematic_, targets, newton);
     if (!r.converged)
       throw ConvergenceError(r.failure);
     return {r.iterations, r.line_search_trials, r.energy};

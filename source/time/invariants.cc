@@ -9,7 +9,7 @@ namespace ritr
     StepReport              &report = result.report;
     const std::string        step   = "step " + std::to_string(report.step) + ": ";
     std::vector<std::string> violations;
-    if (result.outer_stop)
+    if (report.outer_stop)
       {
         if (!(report.energy <= report.initial_objective))
           violations.push_back(step + "R above its start-of-step value");

@@ -8,6 +8,7 @@
 #include <ritr/output/vtk_files.h>
 #include <ritr/time/simulation.h>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
@@ -120,6 +121,7 @@ namespace ritr
                                       const std::string &failure) const
   {
     unsigned int newton = 0, outer = 0, trials = 0;
+    std::array<unsigned int, outer_stop_names.size()> stops{};
     double       inner_seconds = 0, transfer_seconds = 0, outer_seconds = 0, max_sliding = 0;
     for (const auto &r : history_)
       {
@@ -130,6 +132,8 @@ namespace ritr
         transfer_seconds += r.transfer_seconds;
         outer_seconds += r.outer_solve_seconds;
         max_sliding = std::max(max_sliding, r.sliding_violation);
+        if (r.outer_stop)
+          ++stops[static_cast<std::size_t>(*r.outer_stop)];
       }
     write_file_atomically((outputs_->directory / "summary.json").string(), [&](std::ostream &s) {
       s << "{\n  \"complete\": " << (complete ? "true" : "false") << ",\n";
@@ -155,6 +159,13 @@ namespace ritr
         << "  \"total_newton_iterations\": " << newton << ",\n"
         << "  \"total_outer_iterations\": " << outer << ",\n"
         << "  \"total_line_search_trials\": " << trials << ",\n"
+        << "  \"outer_stops\": {" << [&] {
+             std::string counts;
+             for (const auto &[stop, name] : outer_stop_names)
+               counts += (counts.empty() ? "\"" : ", \"") + std::string(name) +
+                         "\": " + std::to_string(stops[static_cast<std::size_t>(stop)]);
+             return counts;
+           }() << "},\n"
         << "  \"inner_solve_seconds\": " << inner_seconds << ",\n"
         << "  \"transfer_seconds\": " << transfer_seconds << ",\n"
         << "  \"outer_solve_seconds\": " << outer_seconds << ",\n"
@@ -208,7 +219,7 @@ namespace ritr
     outputs_->log << "step,time,n_vertices,energy,inner_newton_iterations,outer_iterations,line_search_trials,"
                      "initial_objective,sliding_violation,min_distance,min_reference_measure,"
                      "min_deformed_jacobian,inner_solve_seconds,transfer_seconds,outer_solve_seconds,"
-                     "wall_seconds\n";
+                     "wall_seconds,outer_stop\n";
     outputs_->newton_log << "step,solve,iteration,energy,energy_change,predicted_decrease,step_norm,"
                             "gradient_norm,ccd_bound,alpha,prescribed_moving,judged_by_gradient,hessian_shift,exact_hessian,"
                             "barrier_stiffness,min_active_distance\n";
@@ -221,7 +232,8 @@ namespace ritr
                   << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
                   << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
                   << r.min_reference_measure << ',' << r.min_deformed_jacobian << ',' << r.inner_seconds << ','
-                  << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds << '\n';
+                  << r.transfer_seconds << ',' << r.outer_solve_seconds << ',' << r.wall_seconds << ','
+                  << (r.outer_stop ? name_of(outer_stop_names, *r.outer_stop) : "") << '\n';
   }
 
   template <int dim>

@@ -69,7 +69,7 @@ namespace ritr
         result.u                          = r.u;
         result.z                          = r.z;
         result.v                          = r.v;
-        result.outer_stop                 = r.stop;
+        result.report.outer_stop          = r.stop;
         result.report.energy              = r.objective;
         result.report.initial_objective   = r.initial_objective;
         result.report.sliding_violation   = r.sliding_violation;
@@ -99,6 +99,7 @@ namespace ritr
       settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
       settings.sliding_tolerance         = a.sliding_tolerance;
       settings.max_outer_iterations      = a.max_iterations;
+      settings.decrease_tolerance        = a.decrease_tolerance;
       settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
       // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
       settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);

@@ -11,6 +11,8 @@
 // (5.4, with backtracking on R), inertia corrected | uncorrected (4.3), projection in | after optimization (4.1),
 // and admissibility geometric and/or physical (4.5; without physical admissibility x and u
 // are minimised jointly).
+#include <ritr/adaptivity/outer_model.h>
+#include <ritr/adaptivity/outer_stop.h>
 #include <ritr/adaptivity/reduced_hessian.h>
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/adaptivity/ritr_objective.h>
@@ -18,16 +20,10 @@
 #include <ritr/solver/sparse_cholesky.h>
 #include <ritr/step/implicit_step.h>
 
+#include <tuple>
+
 namespace ritr
 {
-  // Why the outer iteration of a step stopped.
-  enum class OuterStop
-  {
-    converged,           // the Newton step fell below epsilon_r
-    line_search_failed,  // no trial along the direction kept R from increasing
-    iteration_limit      // max_outer_iterations reached
-  };
-
   struct RitrSettings
   {
     RitrHessian         hessian    = RitrHessian::truncated;
@@ -36,6 +32,9 @@ namespace ritr
     bool                geometric_admissibility = true;
     bool                physical_admissibility  = true;
     double       epsilon_r            = 1e-6;  // stop when |du|_inf <= epsilon_r
+    // Trust region: stop when the predicted decrease is below this fraction of R's decrease
+    // in the step so far (0: off).
+    double       decrease_tolerance   = 1e-2;
     unsigned int max_outer_iterations = 200;
     double       sliding_tolerance    = 1e-6;  // eps_b
     double       filter_threshold     = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
@@ -79,6 +78,11 @@ namespace ritr
     // follows the ratio of R's actual to predicted change; trial states are predicted by the
     // implicit-function response of x before the inner solve polishes them.
     void trust_region_solve(const Eigen::VectorXd &targets, Result &r);
+    // R at the trial mesh r.u + step.du, with the state predicted and then solved; returns
+    // (R or +infinity if the inner solve failed, u, z).
+    std::tuple<double, Eigen::VectorXd, Eigen::VectorXd> trial(const typename OuterModel<dim>::Step &step,
+                                                               const ReducedHessian &hessian,
+                                                               const Eigen::VectorXd &targets, Result &r);
     // Newton over (x, u) jointly (the ablation without physical admissibility).
     void joint_solve(const Eigen::VectorXd &targets, Result &r);
     // The iteration both share: `direction()` sets the next Newton step and returns the first
@@ -86,8 +90,10 @@ namespace ritr
     // (+infinity: rejected); `accept(alpha)` takes the trial that did not raise R.
     template <typename Direction, typename Evaluate, typename Accept>
     void descend(Result &r, const Direction &direction, const Evaluate &evaluate, const Accept &accept) const;
-    // x = argmin E(., u) warm-started from z; false if the inner solve failed.
-    bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r);
+    // x = argmin E(., u) warm-started from z (`near_solution`: predicted to first order);
+    // false if the inner solve failed.
+    bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r,
+                       bool near_solution = false);
     // The outer Hessian in basis coordinates (see basis_).
     Eigen::SparseMatrix<double> outer_hessian(const typename RitrObjective<dim>::Derivatives &d) const;
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
@@ -107,8 +113,10 @@ namespace ritr
     Eigen::SparseMatrix<double>          basis_;
     std::vector<int>                     free_state_;  // non-kinematic state entries
     double                               w_hat_ = 0;
+    double                               measure_stiffness_ = 0;  // kappa_w of the current step (0: none)
     double                               youngs_modulus_ = 0;
     SparseCholesky                       cholesky_;
     SparseCholesky                       state_cholesky_;  // H_xx of the reduced Hessian
+    SparseCholesky                       preconditioner_;  // of the trust-region CG
   };
 } // namespace ritr

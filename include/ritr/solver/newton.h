@@ -63,6 +63,9 @@ namespace ritr
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
     HessianProjection projection = HessianProjection::always;
     unsigned int crawl_iterations = 5;  // adaptive: full, non-shrinking steps before switching
+    // Adaptive: start with the exact Hessian (a start close to the solution, where projected
+    // Newton only crawls); a failed exact line search still falls back to projected steps.
+    bool         start_exact = false;
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
   };

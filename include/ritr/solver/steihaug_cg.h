@@ -1,15 +1,19 @@
 #pragma once
-// The trust-region subproblem min_p g.p + 1/2 p.S p subject to |p|_2 <= radius, solved
-// approximately by Steihaug's truncated conjugate gradients: CG from p = 0 until the residual
-// falls below `tolerance`, a direction of non-positive curvature appears or an iterate leaves
-// the trust region; the last two end on the region's boundary. S is only applied, never
-// formed, so it may be a Schur complement that costs a back-substitution per product.
+// The trust-region subproblem min_p g.p + 1/2 p.S p subject to |p|_M <= radius, solved
+// approximately by Steihaug's truncated conjugate gradients, preconditioned by M: CG from
+// p = 0 until the residual falls below `tolerance`, a direction of non-positive curvature
+// appears or an iterate leaves the trust region; the last two end on the region's boundary.
+// In the M-norm the iterates' norms grow monotonically, which makes the boundary test exact.
+// S is only applied, never formed, so it may be a Schur complement that costs a
+// back-substitution per product.
 #include <Eigen/Core>
 
 #include <functional>
 
 namespace ritr
 {
+  using LinearMap = std::function<Eigen::VectorXd(const Eigen::VectorXd &)>;
+
   struct SteihaugResult
   {
     Eigen::VectorXd step;
@@ -19,7 +23,8 @@ namespace ritr
     unsigned int    iterations = 0;       // products with S
   };
 
-  SteihaugResult steihaug_cg(const std::function<Eigen::VectorXd(const Eigen::VectorXd &)> &apply,
-                             const Eigen::VectorXd &g, double radius, double tolerance,
-                             unsigned int max_iterations);
+  // `metric` applies M and `precondition` applies M^-1; both empty: M = I.
+  SteihaugResult steihaug_cg(const LinearMap &apply, const Eigen::VectorXd &g, double radius, double tolerance,
+                             unsigned int max_iterations, const LinearMap &metric = {},
+                             const LinearMap &precondition = {});
 } // namespace ritr

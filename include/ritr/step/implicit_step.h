@@ -50,7 +50,10 @@ namespace ritr
     // Later solves of the same step on another reference u (r-adaptivity's trial meshes),
     // warm-started from z: the stiffness and lagged friction stay frozen, so that the
     // objective is one function across trials. `linear_term` (may be empty) adds l^T x.
-    Report solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets);
+    // `near_solution`: z is predicted to first order (r-ITR trial meshes), so an adaptive
+    // Hessian projection starts exact.
+    Report solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
+                         bool near_solution = false);
 
     void set_linear_term(const Eigen::VectorXd &l) { potential_.set_linear_term(l); }
     const std::vector<bool> &kinematic() const { return kinematic_; }

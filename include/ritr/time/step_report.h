@@ -2,7 +2,10 @@
 // What one step did: a row of log.csv, a line of progress, and (kept for every step) the
 // totals of summary.json. Checkpoints store it too, so that a resumed run reports the steps
 // it did not redo.
+#include <ritr/adaptivity/outer_stop.h>
+
 #include <limits>
+#include <optional>
 
 namespace ritr
 {
@@ -23,5 +26,6 @@ namespace ritr
     double       min_reference_measure = 0;
     double       min_deformed_jacobian = 0;
     double       wall_seconds = 0;
+    std::optional<OuterStop> outer_stop;  // r-adaptivity only
   };
 } // namespace ritr

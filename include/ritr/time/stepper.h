@@ -24,7 +24,6 @@ namespace ritr
     Eigen::VectorXd v;  // body node velocities
     StepReport      report;  // the solver's part; the mesh invariants are filled in later
     // r-adaptivity: why the outer iteration stopped (a fixed-mesh step has none).
-    std::optional<OuterStop> outer_stop;
   };
 
   template <int dim>
