@@ -3,6 +3,7 @@
 // and captures its exit code and standard error; reads and writes whole files and folders.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -83,11 +84,13 @@ end
     std::ofstream(path, std::ios::binary) << text;
   }
 
-  // A CSV file of ritr's (log.csv, newton.csv): a header of column names, numeric rows.
+  // A CSV file of ritr's (log.csv, newton.csv): a header of column names, and rows both as
+  // numbers (a text or empty cell reads NaN) and as the text of each cell.
   struct CsvTable
   {
-    std::vector<std::string>         header;
-    std::vector<std::vector<double>> rows;
+    std::vector<std::string>              header;
+    std::vector<std::vector<double>>      rows;
+    std::vector<std::vector<std::string>> text;
 
     // Index of the named column (header.size() when there is none).
     std::size_t column(const std::string &name) const
@@ -103,15 +106,26 @@ end
     std::string        line;
     for (bool first = true; std::getline(in, line); first = false)
       {
-        std::istringstream cells(line);
-        std::string        cell;
-        if (!first)
-          table.rows.emplace_back();
-        while (std::getline(cells, cell, ','))
-          if (first)
-            table.header.push_back(cell);
+        // Split on every comma, so that a trailing empty cell is a cell too.
+        std::vector<std::string> cells{""};
+        for (const char c : line)
+          if (c == ',')
+            cells.emplace_back();
           else
-            table.rows.back().push_back(std::stod(cell));
+            cells.back().push_back(c);
+        if (first)
+          {
+            table.header = cells;
+            continue;
+          }
+        table.text.push_back(cells);
+        table.rows.emplace_back();
+        for (const auto &cell : cells)
+          {
+            char        *end   = nullptr;
+            const double value = std::strtod(cell.c_str(), &end);
+            table.rows.back().push_back(!cell.empty() && *end == '\0' ? value : std::nan(""));
+          }
       }
     return table;
   }

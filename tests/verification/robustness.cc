@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <gtest/gtest.h>
 
+#include <map>
 #include <sstream>
 
 #include "run_ritr.h"
@@ -53,6 +54,20 @@ TEST(Robustness, AdaptiveRod1D)
     u.push_back(std::stod(line.substr(line.find(',') + 1)));
   std::sort(u.begin(), u.end());
   ASSERT_EQ(u.size(), 4u);
+  // Every r-ITR step says why its outer iteration stopped, and summary.json counts them.
+  const CsvTable log = read_csv("output/ritr_rod_1d/log.csv");
+  const auto     stop = log.column("outer_stop");
+  ASSERT_LT(stop, log.header.size());
+  std::map<std::string, int> stops;
+  for (const auto &row : log.text)
+    ++stops[row[stop]];
+  for (const auto &[name, count] : stops)
+    EXPECT_TRUE(name == "converged" || name == "small_decrease" || name == "no_decrease" ||
+                name == "iteration_limit") << name;
+  const std::string summary = read_file("output/ritr_rod_1d/summary.json");
+  EXPECT_NE(summary.find("\"outer_stops\": {\"converged\": " + std::to_string(stops["converged"]) +
+                         ", \"small_decrease\": " + std::to_string(stops["small_decrease"])),
+            std::string::npos) << summary;
   EXPECT_NEAR(u[1], 0.141198, 1e-4);
   EXPECT_NEAR(u[2], 0.858802, 1e-4);
 }
