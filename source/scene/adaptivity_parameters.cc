@@ -20,7 +20,7 @@ namespace ritr
     prm.declare_entry("quadrature subdivisions", prm_value(d.quadrature_subdivisions), Patterns::Integer(0), "Transfer quadrature on each candidate cell: the Witherden-Vincent rule of 5 points per direction, repeated on n^dim sub-cells (the predictor has kinks inside candidate cells, and the outer solve exploits quadrature error). 0: 64 for rods, 1 for triangles and tetrahedra.");
     prm.declare_entry("epsilon r", prm_value(d.epsilon_r), Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
     prm.declare_entry("sliding tolerance", prm_value(d.sliding_tolerance), Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
-    prm.declare_entry("decrease tolerance", prm_value(d.decrease_tolerance), Patterns::Double(0), "hessian = reduced: a step also ends (outer_stop small_decrease) once the model predicts a decrease of R below this fraction of the decrease the step has already made; 0: only epsilon r ends it.");
+    prm.declare_entry("decrease tolerance", prm_value(d.decrease_tolerance), Patterns::Double(0), "hessian = reduced: a step also ends (outer_stop small_decrease) once the model predicts a decrease of R below this fraction of the decrease the step has already made; 0: the square root of epsilon r (1e-2 for 1e-4), so that epsilon r stays the one knob.");
     prm.declare_entry("max iterations", prm_value(d.max_iterations), Patterns::Integer(1), "Outer iterations per step.");
     prm.leave_subsection();
   }

@@ -99,7 +99,7 @@ namespace ritr
       settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
       settings.sliding_tolerance         = a.sliding_tolerance;
       settings.max_outer_iterations      = a.max_iterations;
-      settings.decrease_tolerance        = a.decrease_tolerance;
+      settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
       settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
       // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
       settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);

@@ -26,7 +26,7 @@ namespace ritr
 {
   struct RitrSettings
   {
-    RitrHessian         hessian    = RitrHessian::truncated;
+    RitrHessian         hessian    = RitrHessian::reduced;
     InertiaForm         inertia    = InertiaForm::corrected;
     PredictorProjection projection = PredictorProjection::in_optimization;
     bool                geometric_admissibility = true;

@@ -74,12 +74,12 @@ namespace ritr
   struct AdaptivityScene
   {
     bool        enabled           = false;
-    RitrHessian         hessian       = RitrHessian::truncated;
+    RitrHessian         hessian       = RitrHessian::reduced;
     InertiaForm         inertia       = InertiaForm::corrected;
     PredictorProjection projection    = PredictorProjection::in_optimization;
     Admissibility       admissibility = Admissibility::both;
     double      epsilon_r         = 1e-6;         // on |du|_inf, in units of the mesh's size
-    double      decrease_tolerance = 1e-2;        // reduced Hessian: on the predicted decrease of R
+    double      decrease_tolerance = 0;           // reduced Hessian: on the predicted decrease of R; 0: sqrt(epsilon_r)
     double      sliding_tolerance = 1e-6;         // eps_b
     double      measure_barrier_stiffness = 0;    // 0: automatic
     unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic
