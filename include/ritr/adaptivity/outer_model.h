@@ -4,8 +4,8 @@
 // with S the exact reduced Hessian (reduced_hessian.h) and the secant curvature of cells the
 // measure barrier cut short (measure_barrier_model.h). Steps are Steihaug CG in the norm of
 // the preconditioner M = sigma I + (barrier Hessian and secants), sigma the model's
-// curvature along the gradient: without it CG ran 3,000 iterations without converging once
-// secants made a few cells many orders stiffer than the rest. Lengths |p|_M / sigma^1/2 are
+// curvature along the gradient: secants make a few cells orders stiffer than the rest, and
+// without it CG ran into its iteration limit (3,180 products on the bar). Lengths |p|_M / sigma^1/2 are
 // Euclidean lengths for steps that move no cell near the barrier, so that radii are lengths.
 #include <ritr/adaptivity/measure_barrier_model.h>
 #include <ritr/adaptivity/reduced_hessian.h>
