@@ -340,9 +340,11 @@ namespace ritr
               }
             if (!(step.predicted < -round_off))
               {
-                // R cannot resolve a Newton step: flat to round-off. Any other step is retried
-                // in a smaller region, whose direction leans towards steepest descent.
-                if (step.newton)
+                // R cannot resolve the step. A Newton step, or any step in a region of the
+                // initial size or larger, means R is flat to round-off at the scale of a cell
+                // (a body in free flight): converged. Otherwise a smaller region is tried,
+                // whose direction leans towards steepest descent.
+                if (step.newton || radius >= initial_radius)
                   {
                     r.stop = OuterStop::converged;
                     return;
