@@ -52,12 +52,8 @@ namespace ritr
     for (int refinement = 0;; ++refinement)
       {
         SteihaugResult cg = steihaug_cg(apply, g_, region, forcing * g_.norm(), max_cg, metric, precondition);
-        step.cg_iterations += cg.iterations;
         if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
-          {
-            cg = steihaug_cg(apply, g_, region, 1e-8 * g_.norm(), max_cg, metric, precondition);
-            step.cg_iterations += cg.iterations;
-          }
+          cg = steihaug_cg(apply, g_, region, 1e-8 * g_.norm(), max_cg, metric, precondition);
         step.p      = cg.step;
         step.du     = basis_ * cg.step;
         step.newton = cg.interior;

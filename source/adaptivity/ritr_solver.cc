@@ -324,7 +324,6 @@ namespace ritr
               ScopedTimer timer(r.outer_solve_seconds);
               step = model->propose(radius, forcing, settings_.epsilon_r, filter, barrier);
             }
-            r.cg_iterations += step.cg_iterations;
             if (step.newton && step.du.template lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
               {
                 r.stop = OuterStop::converged;

@@ -27,7 +27,6 @@ namespace ritr
       Eigen::VectorXd p, du;  // basis and reference coordinates
       double       predicted = 0;  // the model's change along p, with the barrier's actual change
       bool         newton    = false;  // CG converged inside the region: a Newton step
-      unsigned int cg_iterations = 0;
     };
 
     // A CG step in the region of the given length (residual `forcing` |g|) on the model, then

@@ -63,7 +63,6 @@ namespace ritr
       double          sliding_violation = 0;
       OuterStop       stop              = OuterStop::iteration_limit;
       unsigned int    outer_iterations = 0, inner_iterations = 0, line_search_trials = 0;
-      unsigned int    cg_iterations = 0;  // products with the reduced Hessian
       double          inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;
     };
 
