@@ -1,7 +1,6 @@
 #include <ritr/adaptivity/measure_barrier_model.h>
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/common/log_barrier.h>
-#include <ritr/common/second_order_dual.h>
 #include <ritr/common/small_matrix.h>
 
 #include <cmath>
@@ -26,23 +25,6 @@ namespace ritr
   }
 
   template <int dim>
-  std::vector<std::pair<int, double>> MeasureBarrierModel<dim>::measure_gradient(const unsigned int c) const
-  {
-    constexpr int n = dim * (dim + 1);
-    using Dual      = SecondOrderDual<n>;
-    const auto &cell = mesh_.cells[c];
-    std::array<std::array<Dual, dim>, dim + 1> nodes;
-    for (int a = 0; a <= dim; ++a)
-      for (int k = 0; k < dim; ++k)
-        nodes[a][k] = Dual::variable(a * dim + k, u_[cell[a] * dim + k]);
-    const Dual measure = simplex_measure<dim, Dual>(nodes);
-    std::vector<std::pair<int, double>> g;
-    for (int i = 0; i < n; ++i)
-      g.emplace_back(cell[i / dim] * dim + i % dim, measure.grad[i]);
-    return g;
-  }
-
-  template <int dim>
   void MeasureBarrierModel<dim>::set_point(const Eigen::VectorXd &u)
   {
     u_ = u;
@@ -53,12 +35,23 @@ namespace ritr
     full.setFromTriplets(h.begin(), h.end());
     gradient_ = basis_.transpose() * g;
     hessian_  = basis_.transpose() * full * basis_;
-    Triplets rows;
+    build_secant_rows();
+  }
+
+  template <int dim>
+  void MeasureBarrierModel<dim>::build_secant_rows()
+  {
+    constexpr int n = dim * (dim + 1);
+    Triplets      rows;
     for (unsigned int c = 0; c < secant_.size(); ++c)
       if (secant_[c] > 0)
-        for (const auto &[entry, value] : measure_gradient(c))
-          rows.emplace_back(c, entry, std::sqrt(secant_[c]) * value);
-    Eigen::SparseMatrix<double> rows_u(secant_.size(), u.size());
+        {
+          const auto &cell    = mesh_.cells[c];
+          const auto  measure = cell_measure_derivatives<dim>(u_, cell);
+          for (int i = 0; i < n; ++i)
+            rows.emplace_back(c, cell[i / dim] * dim + i % dim, std::sqrt(secant_[c]) * measure.grad[i]);
+        }
+    Eigen::SparseMatrix<double> rows_u(secant_.size(), u_.size());
     rows_u.setFromTriplets(rows.begin(), rows.end());
     secant_rows_ = rows_u * basis_;
   }
@@ -124,7 +117,7 @@ namespace ritr
           }
       }
     if (added)
-      set_point(u_);
+      build_secant_rows();
     return added;
   }
 

@@ -57,7 +57,8 @@ namespace ritr
         step.p      = cg.step;
         step.du     = basis_ * cg.step;
         step.newton = cg.interior;
-        if (cg.interior && step.du.template lpNorm<Eigen::Infinity>() <= epsilon_r)
+        step.converged = cg.interior && step.du.template lpNorm<Eigen::Infinity>() <= epsilon_r;
+        if (step.converged)
           return step;
         // The model along the step: quadratic for all but the barrier, whose actual change
         // it takes; the best admissible fraction of the step.

@@ -119,12 +119,23 @@ namespace ritr
   }
 
   template <int dim>
+  SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives(const Eigen::VectorXd &u,
+                                                           const typename SimplexMesh<dim>::Cell &cell)
+  {
+    using Dual = SecondOrderDual<dim *(dim + 1)>;
+    std::array<std::array<Dual, dim>, dim + 1> nodes;
+    for (int a = 0; a <= dim; ++a)
+      for (int k = 0; k < dim; ++k)
+        nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
+    return simplex_measure<dim, Dual>(nodes);
+  }
+
+  template <int dim>
   double reference_measure_barrier(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &u, const double w_hat,
                                    const double kappa, Eigen::VectorXd *gradient, Triplets *hessian,
                                    const bool project_psd)
   {
     constexpr int n = dim * (dim + 1);
-    using Dual      = SecondOrderDual<n>;
     double energy   = 0;
     for (const auto &cell : mesh.cells)
       {
@@ -136,11 +147,7 @@ namespace ritr
         energy += kappa * log_barrier(w, w_hat);
         if (!gradient && !hessian)
           continue;
-        std::array<std::array<Dual, dim>, dim + 1> nodes;
-        for (int a = 0; a <= dim; ++a)
-          for (int k = 0; k < dim; ++k)
-            nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
-        const Dual   measure = simplex_measure<dim, Dual>(nodes);
+        const auto   measure = cell_measure_derivatives<dim>(u, cell);
         const double db      = log_barrier_derivative(w, w_hat);
         const double d2b     = log_barrier_second_derivative(w, w_hat);
         if (gradient)
@@ -163,6 +170,8 @@ namespace ritr
 #define RITR_INSTANTIATE(dim)                                                                                    \
   template std::vector<SlidingConstraint<dim>> classify_sliding<dim>(const SimplexMesh<dim> &, double);          \
   template double sliding_violation<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &);  \
+  template SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives<dim>(const Eigen::VectorXd &,                \
+                                                                         const SimplexMesh<dim>::Cell &);        \
   template double reference_measure_barrier<dim>(const SimplexMesh<dim> &, const Eigen::VectorXd &, double,      \
                                                  double, Eigen::VectorXd *, Triplets *, bool);
   RITR_INSTANTIATE(1)

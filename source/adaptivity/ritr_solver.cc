@@ -324,7 +324,7 @@ namespace ritr
               ScopedTimer timer(r.outer_solve_seconds);
               step = model->propose(radius, forcing, settings_.epsilon_r, filter, barrier);
             }
-            if (step.newton && step.du.template lpNorm<Eigen::Infinity>() <= settings_.epsilon_r)
+            if (step.converged)
               {
                 r.stop = OuterStop::converged;
                 return;

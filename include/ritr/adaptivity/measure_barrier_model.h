@@ -49,8 +49,8 @@ namespace ritr
 
   private:
     double value_at(const Eigen::VectorXd &u) const;
-    // d w_c / d u at the current point, as (reference entry, value) pairs.
-    std::vector<std::pair<int, double>> measure_gradient(unsigned int c) const;
+    // secant_rows_ from secant_ at the current point.
+    void build_secant_rows();
 
     const SimplexMesh<dim>            &mesh_;
     const Eigen::SparseMatrix<double> &basis_;

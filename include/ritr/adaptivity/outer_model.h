@@ -27,6 +27,7 @@ namespace ritr
       Eigen::VectorXd p, du;  // basis and reference coordinates
       double       predicted = 0;  // the model's change along p, with the barrier's actual change
       bool         newton    = false;  // CG converged inside the region: a Newton step
+      bool         converged = false;  // a Newton step below epsilon_r (returned uncut)
     };
 
     // A CG step in the region of the given length (residual `forcing` |g|) on the model, then
