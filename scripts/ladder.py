@@ -9,13 +9,16 @@ the paper's ladder). Each run is its own process; wall time and peak resident me
 taken from outside it (wait4), and so is the start-up baseline (`ritr --help`), which memory
 ratios subtract. Accuracy is the mean over frames of the Hausdorff distance between deformed
 boundaries (`ritr-compare`) to the finest fixed rung. The headline: the coarsest fixed rung at
-least as accurate as r-ITR, and r-ITR's time and memory ratios to it.
+least as accurate as r-ITR, and r-ITR's time and memory ratios to it. With `--accuracy energy`
+(statics) the runs are ranked by their final energy instead: each minimises the same potential
+over a conforming space of deformations, so the lower equilibrium is the more accurate one.
 
 `--quick` runs two steps of r-ITR and of the two coarsest rungs, so that a scene cannot rot
 unnoticed. The exit code is 1 if any run failed or broke an invariant (the JSON is written
 first: a failing run stays in the results).
 """
 import argparse
+import glob
 import json
 import os
 import subprocess
@@ -64,6 +67,17 @@ def run_rung(args, scene_text, name, overrides, work):
     return run
 
 
+def lowest_point(directory):
+    """Lowest deformed height (y) of the bodies in the run's last frame."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+    frames = sorted(glob.glob(os.path.join(directory, "solution-*.vtu")))
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(frames[-1])
+    reader.Update()
+    return float(vtk_to_numpy(reader.GetOutput().GetPoints().GetData())[:, 1].min())
+
+
 def compare(args, run, reference):
     result = subprocess.run([args.compare, run["directory"], reference["directory"]], capture_output=True, text=True)
     if result.returncode != 0:
@@ -75,10 +89,23 @@ def compare(args, run, reference):
                hausdorff_over_time=[[f["time"], f["hausdorff"]] for f in c["per_frame"]])
 
 
-def headline(runs, reference, baseline_rss):
+def fixed_runs(runs):
+    return [r for r in runs if not r.get("adaptivity", r["name"].startswith("ritr"))]
+
+
+def cost_ratios(ritr, fixed, baseline_rss):
+    memory = lambda r: max(r["peak_rss_bytes"] - baseline_rss, 1)
+    return {"matching_fixed": fixed["name"],
+            "vertex_ratio": fixed.get("n_vertices", 0) / max(ritr.get("n_vertices", 1), 1),
+            "time_ratio_ritr_to_fixed": ritr["wall_seconds"] / fixed["wall_seconds"],
+            "memory_ratio_ritr_to_fixed": memory(ritr) / memory(fixed),
+            "memory_note": "peak RSS minus the start-up baseline of `ritr --help`"}
+
+
+def hausdorff_headline(runs, reference, baseline_rss):
     ritr = runs[0]
     # A rung that stopped early is compared on its frames only: no fair accuracy or cost figure.
-    candidates = [r for r in runs[1:] if r is not reference and "mean_hausdorff" in r and r["exit_code"] == 0]
+    candidates = [r for r in fixed_runs(runs) if r is not reference and "mean_hausdorff" in r and r["exit_code"] == 0]
     if reference["exit_code"] != 0:
         return {"matching_fixed": None, "why": f"the reference rung did not finish (exit {reference['exit_code']})"}
     if "mean_hausdorff" not in ritr or ritr["exit_code"] != 0:
@@ -88,17 +115,32 @@ def headline(runs, reference, baseline_rss):
         matching, why = reference, "no coarser fixed rung is as accurate; the reference rung is"
     else:
         why = "coarsest fixed rung with mean Hausdorff <= r-ITR's"
-    memory = lambda r: max(r["peak_rss_bytes"] - baseline_rss, 1)
-    return {"matching_fixed": matching["name"], "why": why,
-            "vertex_ratio": matching.get("n_vertices", 0) / max(ritr.get("n_vertices", 1), 1),
-            "time_ratio_ritr_to_fixed": ritr["wall_seconds"] / matching["wall_seconds"],
-            "memory_ratio_ritr_to_fixed": memory(ritr) / memory(matching),
-            "memory_note": "peak RSS minus the start-up baseline of `ritr --help`"}
+    return dict(cost_ratios(ritr, matching, baseline_rss), why=why)
+
+
+def energy_headline(runs, baseline_rss):
+    """Statics: every run minimises the same potential over a conforming space of deformations,
+    so a lower final energy is the more accurate equilibrium (the paper's Figs 16 and 18)."""
+    ritr = runs[0]
+    finished = [r for r in fixed_runs(runs) if r["exit_code"] == 0 and "final_energy" in r]
+    if ritr["exit_code"] != 0 or "final_energy" not in ritr:
+        return {"matching_fixed": None, "why": "r-ITR did not finish"}
+    if not finished:
+        return {"matching_fixed": None, "why": "no fixed rung finished"}
+    matching = next((r for r in finished if r["final_energy"] <= ritr["final_energy"]), None)
+    if matching is None:
+        matching = finished[-1]
+        why = "r-ITR's final energy is below every fixed rung's; ratios against the finest finished rung"
+    else:
+        why = "coarsest fixed rung with final energy <= r-ITR's"
+    return dict(cost_ratios(ritr, matching, baseline_rss), why=why,
+                energy_ritr=ritr["final_energy"], energy_fixed=matching["final_energy"])
 
 
 def summary(result, work):
     """One line comparing r-ITR with the fixed mesh of the same size, and where the runs are."""
-    ritr, fixed, reference = result["runs"][0], result["runs"][1], result["runs"][-1]
+    ritr, fixed = result["runs"][0], fixed_runs(result["runs"])[0]
+    reference = next(r for r in result["runs"] if r["name"] == result["reference"])
     accuracy = (f"; mean Hausdorff distance to the fixed mesh of {reference.get('n_vertices', '?'):,} vertices: "
                 f"r-ITR {ritr['mean_hausdorff']:.2e}, fixed {fixed['mean_hausdorff']:.2e}"
                 if "mean_hausdorff" in ritr and "mean_hausdorff" in fixed else "")
@@ -117,7 +159,16 @@ def main():
     p.add_argument("--fixed", type=int, nargs="+", required=True, help="refinements of the fixed rungs")
     p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
                    help="override for every run, e.g. 'Adaptivity/epsilon r=1e-6'")
+    p.add_argument("--ritr-rungs", type=int, nargs="+", default=[0],
+                   help="refinements of r-ITR runs besides the scene's own mesh (r-ITR under refinement)")
     p.add_argument("--quick", action="store_true")
+    p.add_argument("--accuracy", choices=("hausdorff", "energy"), default="hausdorff",
+                   help="what ranks the runs: mean Hausdorff distance to the finest rung (dynamics) or the "
+                        "final energy (statics: the lower equilibrium energy is the better one)")
+    p.add_argument("--pass-below", type=float, metavar="Y",
+                   help="a run passes (an obstacle's gap) when its lowest deformed point ends below height Y")
+    p.add_argument("--require-lower-energy", action="store_true",
+                   help="fail unless every r-ITR run ends with a lower energy than the fixed rung of its size")
     p.add_argument("--out", help="result JSON (default: stdout)")
     p.add_argument("--summary", action="store_true",
                    help="print one line comparing r-ITR with the fixed mesh of its size instead of the JSON")
@@ -135,21 +186,31 @@ def main():
     _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
 
     settings = entries(scene_text)
-    runs = [run_rung(args, scene_text, "ritr", dict(common, **{"Adaptivity/enabled": "true"}), work)]
-    for k in rungs:
-        overrides = dict(common, **{"Adaptivity/enabled": "false"})
+
+    def rung(name, k, adaptivity):
+        overrides = dict(common, **{"Adaptivity/enabled": "true" if adaptivity else "false"})
         for body in body_sections(scene_text):
             overrides[f"{body}/refinements"] = str(int(settings.get(f"{body}/refinements", "0")) + k)
-        run = run_rung(args, scene_text, f"fixed_r{k}", overrides, work)
-        run["refinements"] = k
-        runs.append(run)
+        return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, adaptivity=adaptivity)
+
+    # runs[0] is r-ITR on the scene's own mesh; further r-ITR rungs (paper Fig. 20) follow the fixed ones.
+    runs = [rung("ritr", 0, True)] + [rung(f"fixed_r{k}", k, False) for k in rungs]
     reference = runs[-1]
-    for run in runs[:-1]:
-        compare(args, run, reference)
+    if not args.quick:
+        runs += [rung(f"ritr_r{k}", k, True) for k in sorted(set(args.ritr_rungs) - {0})]
+    for run in runs:
+        if run is not reference:
+            compare(args, run, reference)
+        if args.pass_below is not None and run["exit_code"] == 0:
+            run["lowest_point"] = lowest_point(run["directory"])
+            run["passes"] = run["lowest_point"] < args.pass_below
 
     result = {"scene": os.path.relpath(args.scene), "quick": args.quick, "overrides": common,
+              "pass_below": args.pass_below,
               "baseline_rss_bytes": baseline_rss, "reference": reference["name"], "runs": runs,
-              "headline": headline(runs, reference, baseline_rss)}
+              "accuracy": args.accuracy,
+              "headline": (energy_headline(runs, baseline_rss) if args.accuracy == "energy"
+                           else hausdorff_headline(runs, reference, baseline_rss))}
     for run in runs:
         run.pop("directory")
     if args.summary:
@@ -165,6 +226,14 @@ def main():
     if bad:
         print("ladder: failed or broke an invariant: " + ", ".join(bad), file=sys.stderr)
         return 1
+    if args.require_lower_energy:
+        same_size = {r["refinements"]: r for r in fixed_runs(runs)}
+        higher = [f"{r['name']} {r['final_energy']:.8g} >= {same_size[r['refinements']]['final_energy']:.8g}"
+                  for r in runs if r["adaptivity"] and r["refinements"] in same_size
+                  and r["final_energy"] >= same_size[r["refinements"]]["final_energy"]]
+        if higher:
+            print("ladder: r-ITR not below the fixed mesh of its size: " + ", ".join(higher), file=sys.stderr)
+            return 1
     return 0
 
 

@@ -3,9 +3,11 @@
 
     scripts/ladder_report.py RESULT.json [--plots DIR]
 
-Prints the table to stdout and writes two PNGs beside the JSON (or into DIR):
-NAME_hausdorff.png (Hausdorff distance to the reference rung over time, one line per run) and
-NAME_cost.png (mean Hausdorff against wall time and against vertices, r-ITR marked).
+Prints the table to stdout and writes the plots beside the JSON (or into DIR): for a ladder
+ranked by Hausdorff distance, NAME_hausdorff.png (distance to the reference rung over time, one
+line per run) and NAME_cost.png (mean distance against wall time and against vertices); for one
+ranked by energy (statics), NAME_energy.png (final energy against vertices, wall time and peak
+memory: the paper's Fig. 16). r-ITR is marked in each.
 """
 import argparse
 import json
@@ -34,26 +36,68 @@ def table(result):
                      f"| {(r['peak_rss_bytes'] - base) / 2**20:.0f} | {r.get('total_newton_iterations', '-')} "
                      f"| {r.get('total_outer_iterations', '-')} | {r.get('final_energy', float('nan')):.6g} "
                      f"| {accuracy} | {r['exit_code']} |")
+    if result.get("pass_below") is not None:
+        lines += ["", f"Passes (lowest deformed point below y = {result['pass_below']:g}): " + ", ".join(
+            f"{r['name']} {'passes' if r['passes'] else 'locks'} ({r['lowest_point']:.3f})"
+            for r in result["runs"] if "passes" in r) + "."]
     h = result["headline"]
     if not h.get("matching_fixed"):
         lines += ["", f"No headline: {h['why']}."]
     else:
         lines.append("")
-        lines.append(f"Headline: r-ITR matches `{h['matching_fixed']}` ({h['why']}): "
+        claim = "is compared with" if result.get("accuracy") == "energy" else "matches"
+        lines.append(f"Headline: r-ITR {claim} `{h['matching_fixed']}` ({h['why']}): "
                      f"{h['vertex_ratio']:.1f}x its vertices, time ratio r-ITR/fixed "
                      f"{h['time_ratio_ritr_to_fixed']:.2f}, memory ratio {h['memory_ratio_ritr_to_fixed']:.2f} "
                      f"({h['memory_note']}; baseline {base / 2**20:.0f} MiB).")
     return "\n".join(lines)
 
 
+def is_ritr(run):
+    return run.get("adaptivity", run["name"].startswith("ritr"))
+
+
+def mark(ax, runs, x, y):
+    """Fixed rungs as an orange line, r-ITR runs as green stars (joined when refined too)."""
+    fixed = [r for r in runs if not is_ritr(r)]
+    ax.plot([x(r) for r in fixed], [y(r) for r in fixed], "o-", color="tab:orange", label="fixed mesh")
+    for r in fixed:
+        ax.annotate(r["name"], (x(r), y(r)), fontsize=7)
+    ritr = sorted((r for r in runs if is_ritr(r)), key=lambda r: r.get("n_vertices", 0))
+    if ritr:
+        ax.plot([x(r) for r in ritr], [y(r) for r in ritr], "*-", color="tab:green", markersize=14, label="r-ITR")
+
+
+def energy_plot(result, prefix):
+    """Paper Fig. 16: final energy against vertices, wall time and peak memory, r-ITR marked."""
+    base = result["baseline_rss_bytes"]
+    runs = [r for r in result["runs"] if "final_energy" in r and r["exit_code"] == 0]
+    measures = (("n_vertices", "vertices", lambda r: r["n_vertices"]),
+                ("wall_seconds", "wall time [s]", lambda r: r["wall_seconds"]),
+                ("peak_rss_bytes", "peak RSS - baseline [MiB]", lambda r: max(r["peak_rss_bytes"] - base, 1) / 2**20))
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+    for ax, (_, label, value) in zip(axes, measures):
+        mark(ax, runs, value, lambda r: r["final_energy"])
+        ax.set_xscale("log")
+        ax.set_xlabel(label)
+        ax.set_ylabel("final (equilibrium) energy")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(prefix + "_energy.png", dpi=110)
+    plt.close(fig)
+
+
 def plots(result, prefix):
+    if result.get("accuracy") == "energy":
+        energy_plot(result, prefix)
+        return
     runs = [r for r in result["runs"] if "hausdorff_over_time" in r]
     fig, ax = plt.subplots(figsize=(6, 4))
     for r in runs:
         # The first frame is the shared initial state (distance zero up to round-off).
         frames = [(t, d) for t, d in r["hausdorff_over_time"] if t > 0]
         t, d = zip(*frames) if frames else ([], [])
-        style = dict(color="tab:green", linewidth=2.5) if r["name"] == "ritr" else dict(linewidth=1)
+        style = dict(color="tab:green", linewidth=2.5) if is_ritr(r) else dict(linewidth=1)
         ax.plot(t, d, label=f"{r['name']} ({r.get('n_vertices', '?')} v)", **style)
     ax.set_xlabel("time")
     ax.set_ylabel(f"Hausdorff distance to {result['reference']}")
@@ -65,14 +109,7 @@ def plots(result, prefix):
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for ax, key, label in ((axes[0], "wall_seconds", "wall time [s]"), (axes[1], "n_vertices", "vertices")):
-        fixed = [r for r in runs if r["name"] != "ritr"]
-        ax.plot([r[key] for r in fixed], [r["mean_hausdorff"] for r in fixed], "o-", color="tab:orange",
-                label="fixed mesh")
-        for r in fixed:
-            ax.annotate(r["name"], (r[key], r["mean_hausdorff"]), fontsize=7)
-        for r in runs:
-            if r["name"] == "ritr":
-                ax.plot([r[key]], [r["mean_hausdorff"]], "*", color="tab:green", markersize=14, label="r-ITR")
+        mark(ax, runs, lambda r: r[key], lambda r: r["mean_hausdorff"])
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(label)

@@ -11,4 +11,5 @@ fi
 cd "$root/meshes"
 gmsh -2 wedge.geo -o wedge.msh > /dev/null
 gmsh -1 funnel.geo -o funnel.msh > /dev/null
+gmsh -3 wedge_3d.geo -o wedge_3d.msh > /dev/null
 echo "meshes regenerated: $(ls *.msh | tr '\n' ' ')"
