@@ -12,6 +12,7 @@ memory: the paper's Fig. 16). r-ITR is marked in each.
 import argparse
 import json
 import os
+import statistics
 import sys
 
 import matplotlib
@@ -40,6 +41,12 @@ def table(result):
         lines += ["", f"Passes (lowest deformed point below y = {result['pass_below']:g}): " + ", ".join(
             f"{r['name']} {'passes' if r['passes'] else 'locks'} ({r['lowest_point']:.3f})"
             for r in result["runs"] if "passes" in r) + "."]
+    if result.get("corner_touch") is not None:
+        lines += ["", f"Obstacle corners within {result['corner_touch']:g} of a body, distance to the nearest mesh "
+                  "vertex: " + "; ".join(
+                      f"{r['name']} {len(r['corner_distances'])} corners, median "
+                      f"{statistics.median(r['corner_distances'] or [0]):.2e}, max {max(r['corner_distances'], default=0):.2e}"
+                      for r in result["runs"] if "corner_distances" in r) + "."]
     h = result["headline"]
     if not h.get("matching_fixed"):
         lines += ["", f"No headline: {h['why']}."]
@@ -68,23 +75,30 @@ def mark(ax, runs, x, y):
         ax.plot([x(r) for r in ritr], [y(r) for r in ritr], "*-", color="tab:green", markersize=14, label="r-ITR")
 
 
-def energy_plot(result, prefix):
-    """Paper Fig. 16: final energy against vertices, wall time and peak memory, r-ITR marked."""
-    base = result["baseline_rss_bytes"]
-    runs = [r for r in result["runs"] if "final_energy" in r and r["exit_code"] == 0]
-    measures = (("n_vertices", "vertices", lambda r: r["n_vertices"]),
-                ("wall_seconds", "wall time [s]", lambda r: r["wall_seconds"]),
-                ("peak_rss_bytes", "peak RSS - baseline [MiB]", lambda r: max(r["peak_rss_bytes"] - base, 1) / 2**20))
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
-    for ax, (_, label, value) in zip(axes, measures):
-        mark(ax, runs, value, lambda r: r["final_energy"])
+def cost_figure(path, runs, measures, y, ylabel, log_y):
+    """One panel per cost measure (label, value of a run) with y against it, r-ITR marked."""
+    fig, axes = plt.subplots(1, len(measures), figsize=(4.7 * len(measures), 4))
+    for ax, (label, value) in zip(axes, measures):
+        mark(ax, runs, value, y)
         ax.set_xscale("log")
+        if log_y:
+            ax.set_yscale("log")
         ax.set_xlabel(label)
-        ax.set_ylabel("final (equilibrium) energy")
+        ax.set_ylabel(ylabel)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(prefix + "_energy.png", dpi=110)
+    fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def energy_plot(result, prefix):
+    """Paper Fig. 16: final energy against vertices, wall time and peak memory."""
+    base = result["baseline_rss_bytes"]
+    runs = [r for r in result["runs"] if "final_energy" in r and r["exit_code"] == 0]
+    measures = (("vertices", lambda r: r["n_vertices"]), ("wall time [s]", lambda r: r["wall_seconds"]),
+                ("peak RSS - baseline [MiB]", lambda r: max(r["peak_rss_bytes"] - base, 1) / 2**20))
+    cost_figure(prefix + "_energy.png", runs, measures, lambda r: r["final_energy"],
+                "final (equilibrium) energy", log_y=False)
 
 
 def plots(result, prefix):
@@ -107,17 +121,9 @@ def plots(result, prefix):
     fig.savefig(prefix + "_hausdorff.png", dpi=110)
     plt.close(fig)
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, key, label in ((axes[0], "wall_seconds", "wall time [s]"), (axes[1], "n_vertices", "vertices")):
-        mark(ax, runs, lambda r: r[key], lambda r: r["mean_hausdorff"])
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel(label)
-        ax.set_ylabel("mean Hausdorff distance")
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(prefix + "_cost.png", dpi=110)
-    plt.close(fig)
+    measures = (("wall time [s]", lambda r: r["wall_seconds"]), ("vertices", lambda r: r["n_vertices"]))
+    cost_figure(prefix + "_cost.png", runs, measures, lambda r: r["mean_hausdorff"], "mean Hausdorff distance",
+                log_y=True)
 
 
 def main():

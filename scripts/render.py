@@ -124,7 +124,10 @@ class Scene:
         shown.ColorArrayName = ["POINTS", ""]
         shown.AmbientColor = shown.DiffuseColor = [0.35, 0.35, 0.35]
         shown.LineWidth = 2.0
-        return bounds_at(reader, self.times[0])
+        bounds = bounds_at(reader, self.times[0])
+        if bounds[5] > bounds[4]:
+            shown.Opacity = 0.3  # 3D: the bodies in a gap or behind a block stay visible
+        return bounds
 
     def show_reference_beside(self, left):
         """Shows the reference mesh to the right of the bounds `left`; returns its bounds."""

@@ -1,0 +1,63 @@
+"""Measurements on the last output frame of a ritr run (VTK's XML readers), for scripts/ladder.py.
+
+lowest_point: the lowest deformed height (y) of the bodies, to tell whether a run passed a gap.
+corner_distances: for each obstacle vertex that touches a body (within `touch` of its deformed
+boundary), the distance to the nearest deformed mesh vertex; small when the mesh has put a
+vertex on the obstacle's corner, about half an edge when the corner presses into an edge (the
+paper's stamping figure). 2D only.
+"""
+import glob
+import os
+
+import numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkFiltersCore import vtkFeatureEdges
+from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+
+def last_frame(directory, prefix):
+    frames = sorted(glob.glob(os.path.join(directory, prefix + "-*.vtu")))
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(frames[-1])
+    reader.Update()
+    return reader.GetOutput()
+
+
+def points(grid):
+    return vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
+
+
+def lowest_point(directory):
+    return float(points(last_frame(directory, "solution"))[:, 1].min())
+
+
+def boundary_segments(grid):
+    """(n, 2, 2) array of the end points of the boundary edges of a 2D triangle mesh."""
+    surface = vtkGeometryFilter()
+    surface.SetInputData(grid)
+    edges = vtkFeatureEdges()
+    edges.SetInputConnection(surface.GetOutputPort())
+    edges.BoundaryEdgesOn()
+    edges.FeatureEdgesOff()
+    edges.NonManifoldEdgesOff()
+    edges.ManifoldEdgesOff()
+    edges.Update()
+    lines = edges.GetOutput()
+    xy = vtk_to_numpy(lines.GetPoints().GetData())[:, :2]
+    ids = vtk_to_numpy(lines.GetLines().GetConnectivityArray()).reshape(-1, 2)
+    return xy[ids]
+
+
+def distance_to_segments(p, segments):
+    a, b = segments[:, 0], segments[:, 1]
+    ab = b - a
+    t = numpy.clip(numpy.einsum("ij,ij->i", p - a, ab) / numpy.einsum("ij,ij->i", ab, ab), 0.0, 1.0)
+    return numpy.linalg.norm(a + t[:, None] * ab - p, axis=1).min()
+
+
+def corner_distances(directory, touch):
+    body = last_frame(directory, "solution")
+    vertices, segments = points(body), boundary_segments(body)
+    corners = [c for c in points(last_frame(directory, "obstacles")) if distance_to_segments(c, segments) <= touch]
+    return [float(numpy.linalg.norm(vertices - c, axis=1).min()) for c in corners]
