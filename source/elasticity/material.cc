@@ -4,15 +4,8 @@
 
 namespace ritr
 {
-  MaterialModel parse_material_model(const std::string &name)
+  MaterialModel material_model_from(const std::string &name)
   {
-    if (name == "neo-hookean")
-      return MaterialModel::neo_hookean;
-    if (name == "linear")
-      return MaterialModel::linear;
-    if (name == "stvk")
-      return MaterialModel::stvk;
-    throw std::runtime_error("unknown material model '" + name +
-                             "' (expected neo-hookean, linear or stvk)");
+    return value_named(material_model_names, name, "material model");
   }
 } // namespace ritr

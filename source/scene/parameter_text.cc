@@ -32,11 +32,19 @@ namespace ritr
 
   std::string prm_value(const bool value) { return value ? "true" : "false"; }
 
-  std::string prm_value(const std::vector<double> &values)
+  namespace
   {
-    std::string text;
-    for (const double v : values)
-      text += (text.empty() ? "" : ",") + prm_value(v);
-    return text;
-  }
+    template <typename Number>
+    std::string comma_separated(const std::vector<Number> &values)
+    {
+      std::string text;
+      for (const Number v : values)
+        text += (text.empty() ? "" : ",") + prm_value(v);
+      return text;
+    }
+  } // namespace
+
+  std::string prm_value(const std::vector<double> &values) { return comma_separated(values); }
+
+  std::string prm_value(const std::vector<unsigned int> &values) { return comma_separated(values); }
 } // namespace ritr

@@ -19,6 +19,9 @@ namespace ritr
     using dealii::ParameterHandler;
     namespace Patterns = dealii::Patterns;
 
+    // A vector expression left at zero ("" in the scene structs) reads this in any dimension.
+    const std::string zero_vector = "0;0;0";
+
     const auto doubles  = [] { return Patterns::List(Patterns::Double(), 0, 3); };
     const auto unsigneds = [] { return Patterns::List(Patterns::Integer(0), 0, 3); };
 
@@ -34,60 +37,65 @@ namespace ritr
       prm.declare_entry("output every", prm_value(defaults.output_every), Patterns::Integer(1), "Write VTU files every this many steps (log.csv gets every step).");
       prm.declare_entry("write nodal csv", prm_value(defaults.write_nodal_csv), Patterns::Bool(), "Also write nodes-NNNNN.csv with id, u, x, v per node.");
 
+      const BodyDescription body;
       for (unsigned int b = 0; b < max_bodies; ++b)
         {
           prm.enter_subsection("Body " + std::to_string(b));
           prm.declare_entry("enabled", b == 0 ? "true" : "false", Patterns::Bool(), "Whether this body exists.");
-          prm.declare_entry("shape", "rectangle", Patterns::Selection("interval|rectangle|box|disk|ball|file"), "interval (1D), rectangle (2D), box (3D), disk (2D), ball (3D) or file (gmsh .msh).");
-          prm.declare_entry("file", "", Patterns::Anything(), "gmsh mesh for shape = file, relative to the .prm file. Physical tags give material and boundary ids.");
-          prm.declare_entry("lower", "0,0,0", doubles(), "Lower corner (interval/rectangle/box): dim numbers.");
-          prm.declare_entry("upper", "1,1,1", doubles(), "Upper corner (interval/rectangle/box): dim numbers.");
-          prm.declare_entry("subdivisions", "1,1,1", unsigneds(), "Cells per direction before splitting into simplices: dim numbers.");
-          prm.declare_entry("center", "0,0,0", doubles(), "Centre of a disk or ball: dim numbers.");
-          prm.declare_entry("radius", "1", Patterns::Double(0), "Radius of a disk or ball.");
-          prm.declare_entry("shape refinements", "2", Patterns::Integer(0, 8), "Refinements of a disk/ball that follow its round boundary.");
-          prm.declare_entry("refinements", "0", Patterns::Integer(0, 8), "Uniform refinements by edge subdivision (each multiplies the cell count by 2^dim).");
-          prm.declare_entry("translation", "0,0,0", doubles(), "Shift applied to the body: dim numbers.");
-          prm.declare_entry("material id", "0", Patterns::Integer(0, max_materials - 1), "Material of generated bodies (files use their physical tags).");
-          prm.declare_entry("initial velocity", "0;0;0", Patterns::Anything(), "Initial velocity field: dim components separated by ';', in x,y,z.");
+          prm.declare_entry("shape", body.shape, Patterns::Selection("interval|rectangle|box|disk|ball|file"), "interval (1D), rectangle (2D), box (3D), disk (2D), ball (3D) or file (gmsh .msh).");
+          prm.declare_entry("file", body.file, Patterns::Anything(), "gmsh mesh for shape = file, relative to the .prm file. Physical tags give material and boundary ids.");
+          prm.declare_entry("lower", prm_value(body.lower), doubles(), "Lower corner (interval/rectangle/box): dim numbers.");
+          prm.declare_entry("upper", prm_value(body.upper), doubles(), "Upper corner (interval/rectangle/box): dim numbers.");
+          prm.declare_entry("subdivisions", prm_value(body.subdivisions), unsigneds(), "Cells per direction before splitting into simplices: dim numbers.");
+          prm.declare_entry("center", prm_value(body.center), doubles(), "Centre of a disk or ball: dim numbers.");
+          prm.declare_entry("radius", prm_value(body.radius), Patterns::Double(0), "Radius of a disk or ball.");
+          prm.declare_entry("shape refinements", prm_value(body.shape_refinements), Patterns::Integer(0, 8), "Refinements of a disk/ball that follow its round boundary.");
+          prm.declare_entry("refinements", prm_value(body.refinements), Patterns::Integer(0, 8), "Uniform refinements by edge subdivision (each multiplies the cell count by 2^dim).");
+          prm.declare_entry("translation", prm_value(body.translation), doubles(), "Shift applied to the body: dim numbers.");
+          prm.declare_entry("material id", prm_value(body.material_id), Patterns::Integer(0, max_materials - 1), "Material of generated bodies (files use their physical tags).");
+          prm.declare_entry("initial velocity", zero_vector, Patterns::Anything(), "Initial velocity field: dim components separated by ';', in x,y,z.");
           prm.leave_subsection();
         }
+      const Material material;
       for (unsigned int m = 0; m < max_materials; ++m)
         {
           prm.enter_subsection("Material " + std::to_string(m));
-          prm.declare_entry("model", "neo-hookean", Patterns::Selection("neo-hookean|linear|stvk"), "Hyperelastic model.");
-          prm.declare_entry("youngs modulus", "1e5", Patterns::Double(0), "Young's modulus E [Pa].");
-          prm.declare_entry("poisson ratio", "0.3", Patterns::Double(0, 0.5), "Poisson's ratio (ignored in 1D: a rod's modulus is E).");
-          prm.declare_entry("density", "1000", Patterns::Double(0), "Mass density [kg/m^dim].");
+          prm.declare_entry("model", name_of(material_model_names, material.model),
+                            Patterns::Selection(selection(material_model_names)), "Hyperelastic model.");
+          prm.declare_entry("youngs modulus", prm_value(material.youngs_modulus), Patterns::Double(0), "Young's modulus E [Pa].");
+          prm.declare_entry("poisson ratio", prm_value(material.poisson_ratio), Patterns::Double(0, 0.5), "Poisson's ratio (ignored in 1D: a rod's modulus is E).");
+          prm.declare_entry("density", prm_value(material.density), Patterns::Double(0), "Mass density [kg/m^dim].");
           prm.leave_subsection();
         }
       prm.enter_subsection("Gravity");
       prm.declare_entry("acceleration", prm_value(defaults.gravity), doubles(), "Body force per unit mass: dim numbers.");
       prm.declare_entry("load factor", defaults.load_factor, Patterns::Anything(), "Scalar expression in t scaling gravity (load stepping in statics, e.g. t/T).");
       prm.leave_subsection();
+      const DirichletScene dirichlet;
       for (unsigned int d = 0; d < max_dirichlet; ++d)
         {
           prm.enter_subsection("Dirichlet " + std::to_string(d));
           prm.declare_entry("enabled", "false", Patterns::Bool(), "Whether this condition is applied.");
-          prm.declare_entry("boundary ids", "", unsigneds(), "Nodes on boundary facets with these ids are prescribed.");
-          prm.declare_entry("region", "", Patterns::Anything(), "Or: nodes where this expression of x,y,z is > 0 (e.g. 'x < 1e-6').");
-          prm.declare_entry("displacement", "0;0;0", Patterns::Anything(), "Prescribed displacement: dim components in x,y,z,t.");
+          prm.declare_entry("boundary ids", prm_value(dirichlet.boundary_ids), unsigneds(), "Nodes on boundary facets with these ids are prescribed.");
+          prm.declare_entry("region", dirichlet.region, Patterns::Anything(), "Or: nodes where this expression of x,y,z is > 0 (e.g. 'x < 1e-6').");
+          prm.declare_entry("displacement", zero_vector, Patterns::Anything(), "Prescribed displacement: dim components in x,y,z,t.");
           prm.leave_subsection();
         }
+      const ObstacleScene obstacle;
       for (unsigned int o = 0; o < max_obstacles; ++o)
         {
           prm.enter_subsection("Obstacle " + std::to_string(o));
-          prm.declare_entry("type", "none", Patterns::Selection("none|plane|box|spikes|punch|file"), "Rigid obstacle: none, plane (ground), box, spikes (a row of sharp spikes), punch (a bar), file (.obj or .msh surface).");
-          prm.declare_entry("file", "", Patterns::Anything(), "Surface mesh for type = file, relative to the .prm file.");
-          prm.declare_entry("point", "0,0,0", doubles(), "plane: a point on it; box/punch: centre; spikes: centre of the row's base (dim numbers).");
-          prm.declare_entry("normal", "0,1,0", doubles(), "plane: outward normal (the side where bodies are; dim numbers).");
-          prm.declare_entry("size", "10,10,10", doubles(), "plane: extent (one number); box/punch: edge lengths (dim numbers); spikes: row length (one number; a 3D row is as deep as it is long).");
-          prm.declare_entry("count", "5", Patterns::Integer(1), "spikes: number of spikes (per row direction).");
-          prm.declare_entry("spike height", "0.2", Patterns::Double(0), "spikes: height of each spike.");
-          prm.declare_entry("translation", "0;0;0", Patterns::Anything(), "Scripted translation: dim components in t.");
+          prm.declare_entry("type", obstacle.type, Patterns::Selection("none|plane|box|spikes|punch|file"), "Rigid obstacle: none, plane (ground), box, spikes (a row of sharp spikes), punch (a bar), file (.obj or .msh surface).");
+          prm.declare_entry("file", obstacle.file, Patterns::Anything(), "Surface mesh for type = file, relative to the .prm file.");
+          prm.declare_entry("point", prm_value(obstacle.point), doubles(), "plane: a point on it; box/punch: centre; spikes: centre of the row's base (dim numbers).");
+          prm.declare_entry("normal", prm_value(obstacle.normal), doubles(), "plane: outward normal (the side where bodies are; dim numbers).");
+          prm.declare_entry("size", prm_value(obstacle.size), doubles(), "plane: extent (one number); box/punch: edge lengths (dim numbers); spikes: row length (one number; a 3D row is as deep as it is long).");
+          prm.declare_entry("count", prm_value(obstacle.count), Patterns::Integer(1), "spikes: number of spikes (per row direction).");
+          prm.declare_entry("spike height", prm_value(obstacle.spike_height), Patterns::Double(0), "spikes: height of each spike.");
+          prm.declare_entry("translation", zero_vector, Patterns::Anything(), "Scripted translation: dim components in t.");
           prm.declare_entry("rotation angle", "0", Patterns::Anything(), "Scripted rotation angle [rad] in t, about the rotation center (and axis in 3D).");
-          prm.declare_entry("rotation axis", "0,0,1", doubles(), "3D rotation axis (3 numbers).");
-          prm.declare_entry("rotation center", "0,0,0", doubles(), "Centre of rotation (dim numbers).");
+          prm.declare_entry("rotation axis", prm_value(obstacle.rotation_axis), doubles(), "3D rotation axis (3 numbers).");
+          prm.declare_entry("rotation center", prm_value(obstacle.rotation_center), doubles(), "Centre of rotation (dim numbers).");
           prm.leave_subsection();
         }
       ContactScene::declare_parameters(prm);
@@ -157,11 +165,11 @@ namespace ritr
         }
     }
 
-    // Vector expressions default to "0;0;0"; left at that default they mean zero in any dimension.
+    // Vector expressions left at zero_vector mean zero in any dimension.
     std::string vector_expression(ParameterHandler &prm, const std::string &name, const int dim)
     {
       const std::string text = prm.get(name);
-      if (text != "0;0;0")
+      if (text != zero_vector)
         return text;
       return dim == 1 ? "0" : dim == 2 ? "0;0" : "0;0;0";
     }
@@ -244,7 +252,7 @@ namespace ritr
         {
           prm.enter_subsection("Material " + std::to_string(m));
           Material mat;
-          mat.model          = parse_material_model(prm.get("model"));
+          mat.model          = material_model_from(prm.get("model"));
           mat.youngs_modulus = prm.get_double("youngs modulus");
           mat.poisson_ratio  = prm.get_double("poisson ratio");
           mat.density        = prm.get_double("density");

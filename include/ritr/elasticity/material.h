@@ -1,6 +1,7 @@
 #pragma once
 // Hyperelastic energy densities Psi(F), written once as templates on the scalar type so that
 // their derivatives come from SecondOrderDual (and are checked by finite differences).
+#include <ritr/common/enum_names.h>
 #include <ritr/common/second_order_dual.h>
 #include <ritr/common/small_matrix.h>
 
@@ -17,7 +18,12 @@ namespace ritr
     stvk
   };
 
-  MaterialModel parse_material_model(const std::string &name);
+  // The one mapping between models and their names in a parameter file.
+  inline constexpr EnumNames<MaterialModel, 3> material_model_names{{{MaterialModel::neo_hookean, "neo-hookean"},
+                                                                      {MaterialModel::linear, "linear"},
+                                                                      {MaterialModel::stvk, "stvk"}}};
+
+  MaterialModel material_model_from(const std::string &name);  // neo-hookean|linear|stvk
 
   struct Material
   {

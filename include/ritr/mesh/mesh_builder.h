@@ -22,7 +22,7 @@ namespace ritr
     double                    radius = 1.0;
     // Refinements of the quadrilateral/hexahedral disk or ball before it is split into
     // simplices (they follow the round boundary), and uniform simplex refinements after.
-    unsigned int              shape_refinements = 0;
+    unsigned int              shape_refinements = 2;
     unsigned int              refinements       = 0;
     std::vector<double>       translation{0, 0, 0};
     unsigned int              material_id = 0;

@@ -15,4 +15,5 @@ namespace ritr
   std::string prm_value(bool value);  // true|false
   // Comma-separated ("0,-9.81,0").
   std::string prm_value(const std::vector<double> &values);
+  std::string prm_value(const std::vector<unsigned int> &values);
 } // namespace ritr

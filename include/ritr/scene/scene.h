@@ -2,9 +2,10 @@
 // A scene as read from a .prm file: everything a simulation needs, validated, with no
 // deal.II types in it. Expressions (initial velocity, Dirichlet displacement, obstacle
 // motion) stay strings here and are compiled by deal.II's FunctionParser where used.
-// The default member values are the defaults of the .prm file: the subsections with a
-// struct of their own declare their entries from a default-constructed one (deal.II step-44's
-// declare_parameters/parse_parameters), parameters.cc the top-level and Gravity entries.
+// The default member values are the defaults of the .prm file: every subsection declares its
+// entries from a default-constructed struct (deal.II step-44's declare_parameters), the
+// numbered ones (Body, Material, Dirichlet, Obstacle) and the top level in parameters.cc.
+// An expression left empty here is zero, spelled "0;0;0" (any dimension) in the file.
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
 #include <ritr/scene/adaptivity_options.h>
@@ -40,15 +41,15 @@ namespace ritr
 
   struct ObstacleScene
   {
-    std::string         type;  // plane|box|spikes|punch|file
+    std::string         type = "none";  // none|plane|box|spikes|punch|file
     std::string         file;  // .obj (3D triangles / 2D lines) or .msh surface
     std::vector<double> point{0, 0, 0};   // plane point, box/punch centre, first spike tip base
     std::vector<double> normal{0, 1, 0};  // plane normal
-    std::vector<double> size{1, 1, 1};    // plane extent / box and punch size / spikes row extent
+    std::vector<double> size{10, 10, 10};  // plane extent / box and punch size / spikes row extent
     unsigned int        count = 5;        // spikes
     double              spike_height = 0.2;
-    std::string         translation;       // vector expression in t
-    std::string         rotation_angle;    // scalar expression in t (radians)
+    std::string         translation;       // vector expression in t; empty: none
+    std::string         rotation_angle;    // scalar expression in t (radians); empty: none
     std::vector<double> rotation_axis{0, 0, 1};
     std::vector<double> rotation_center{0, 0, 0};
     std::string         section;
