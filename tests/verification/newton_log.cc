@@ -42,7 +42,9 @@ TEST(NewtonLog, OneRowPerIterationOnTheFastBar)
       if (row[by_gradient] == 1)
         ++judged_by_gradient;
       else if (row[moving] == 0)
-        EXPECT_LE(row[change], 0.0) << "step " << row[0] << ", iteration " << row[2];
+        {
+          EXPECT_LE(row[change], 0.0) << "step " << row[0] << ", iteration " << row[2];
+        }
     }
   EXPECT_GT(judged_by_gradient, 0u);
 }
@@ -117,7 +119,9 @@ TEST(NewtonLog, AdaptiveProjectionFinishesTheCrawl)
     {
       exact_steps += row[exact] == 1;
       if (row[exact] == 0)
-        EXPECT_EQ(row[shift], 0.0);  // a projected Hessian factorizes without a shift here
+        {
+          EXPECT_EQ(row[shift], 0.0);  // a projected Hessian factorizes without a shift here
+        }
     }
   EXPECT_GT(exact_steps, 10u);
   EXPECT_LT(exact_steps, log.rows.size());

@@ -34,7 +34,7 @@ namespace
   // quadratic between the breakpoints {0, a, 1/2, 1}, so Simpson's rule on each piece is exact.
   double reduced_objective(const double a, const bool corrected)
   {
-    const std::array<double, 3> X{0, a, 1};
+    const std::array<double, 3> X{{0, a, 1}};
     const auto hat = [&](const int i, const double Y) {
       if (i > 0 && Y >= X[i - 1] && Y <= X[i])
         return (Y - X[i - 1]) / (X[i] - X[i - 1]);
