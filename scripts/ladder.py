@@ -80,8 +80,13 @@ def compare(args, run, reference):
                hausdorff_over_time=[[f["time"], f["hausdorff"]] for f in c["per_frame"]])
 
 
+def is_ritr(run):
+    # Results written before runs carried "adaptivity" name their r-ITR runs "ritr...".
+    return run.get("adaptivity", run["name"].startswith("ritr"))
+
+
 def fixed_runs(runs):
-    return [r for r in runs if not r.get("adaptivity", r["name"].startswith("ritr"))]
+    return [r for r in runs if not is_ritr(r)]
 
 
 def cost_ratios(ritr, fixed, baseline_rss):

@@ -17,6 +17,9 @@ import sys
 
 import matplotlib
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ladder import fixed_runs, is_ritr  # noqa: E402
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -60,13 +63,9 @@ def table(result):
     return "\n".join(lines)
 
 
-def is_ritr(run):
-    return run.get("adaptivity", run["name"].startswith("ritr"))
-
-
 def mark(ax, runs, x, y):
     """Fixed rungs as an orange line, r-ITR runs as green stars (joined when refined too)."""
-    fixed = [r for r in runs if not is_ritr(r)]
+    fixed = fixed_runs(runs)
     ax.plot([x(r) for r in fixed], [y(r) for r in fixed], "o-", color="tab:orange", label="fixed mesh")
     for r in fixed:
         ax.annotate(r["name"], (x(r), y(r)), fontsize=7)

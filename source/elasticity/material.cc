@@ -1,7 +1,5 @@
 #include <ritr/elasticity/material.h>
 
-#include <stdexcept>
-
 namespace ritr
 {
   MaterialModel material_model_from(const std::string &name)
