@@ -5,9 +5,12 @@ corner_distances: for each obstacle vertex that touches a body (within `touch` o
 boundary), the distance to the nearest deformed mesh vertex; small when the mesh has put a
 vertex on the obstacle's corner, about half an edge when the corner presses into an edge (the
 paper's stamping figure). 2D only.
+centroid_heights: the height of the bodies' deformed area centroid in every output frame, with
+the frame's time (the paper's varying-friction figure). 2D only.
 """
 import glob
 import os
+import xml.etree.ElementTree
 
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -16,12 +19,15 @@ from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 
 
-def last_frame(directory, prefix):
-    frames = sorted(glob.glob(os.path.join(directory, prefix + "-*.vtu")))
+def read_frame(path):
     reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(frames[-1])
+    reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
+
+
+def last_frame(directory, prefix):
+    return read_frame(sorted(glob.glob(os.path.join(directory, prefix + "-*.vtu")))[-1])
 
 
 def points(grid):
@@ -61,3 +67,18 @@ def corner_distances(directory, touch):
     vertices, segments = points(body), boundary_segments(body)
     corners = [c for c in points(last_frame(directory, "obstacles")) if distance_to_segments(c, segments) <= touch]
     return [float(numpy.linalg.norm(vertices - c, axis=1).min()) for c in corners]
+
+
+def centroid_height(grid):
+    """Height of the area centroid of a 2D triangle mesh."""
+    xy = points(grid)
+    a, b, c = (xy[i] for i in vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 3).T)
+    area = 0.5 * ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+    return float(((a + b + c)[:, 1] / 3 * area).sum() / area.sum())
+
+
+def centroid_heights(directory):
+    """[[time, centroid height], ...] over the frames of solution.pvd."""
+    collection = xml.etree.ElementTree.parse(os.path.join(directory, "solution.pvd")).getroot()
+    return [[float(d.get("timestep")), centroid_height(read_frame(os.path.join(directory, d.get("file"))))]
+            for d in collection.iter("DataSet")]

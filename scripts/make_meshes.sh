@@ -11,5 +11,6 @@ fi
 cd "$root/meshes"
 gmsh -2 wedge.geo -o wedge.msh > /dev/null
 gmsh -1 funnel.geo -o funnel.msh > /dev/null
+gmsh -1 angled_gap.geo -o angled_gap.msh > /dev/null
 gmsh -3 wedge_3d.geo -o wedge_3d.msh > /dev/null
 echo "meshes regenerated: $(ls *.msh | tr '\n' ' ')"

@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""A Markdown table and the plot of one friction sweep (scripts/friction_sweep.py).
+
+    scripts/friction_sweep_report.py RESULT.json [--plots DIR]
+
+Prints the table to stdout and writes NAME_centroid.png beside the JSON (or into DIR): the
+height of each run's centroid over time, r-ITR per friction coefficient in bold lines, the
+fixed mesh of its size dashed and the finer fixed rungs thin (the paper's Fig. 21).
+"""
+import argparse
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def table(result):
+    base = result["baseline_rss_bytes"]
+    lines = ["| run | mu | vertices | wall [s] | peak RSS - baseline [MiB] | Newton its | outer its "
+             "| final centroid height | outcome | exit |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for r in result["runs"]:
+        outcome = ("passes" if r["passes"] else "caught") if "passes" in r else "-"
+        centroid = f"{r['final_centroid']:.3f}" if "final_centroid" in r else "-"
+        lines.append(f"| {r['name']} | {r['mu']:g} | {r.get('n_vertices', '?'):,} | {r['wall_seconds']:.1f} "
+                     f"| {(r['peak_rss_bytes'] - base) / 2**20:.0f} | {r.get('total_newton_iterations', '-')} "
+                     f"| {r.get('total_outer_iterations', '-')} | {centroid} | {outcome} | {r['exit_code']} |")
+    lines += ["", f"A run passes when its centroid ends below y = {result['pass_below']:g}."]
+    h = result["headline"]
+    if not h.get("matching_fixed"):
+        lines.append(f"No headline: {h['why']}.")
+    else:
+        lines.append(f"Headline: `{h['matching_fixed']}` ({h['why']}): {h['vertex_ratio']:.1f}x r-ITR's vertices, "
+                     f"time ratio r-ITR/fixed {h['time_ratio_ritr_to_fixed']:.2f}, memory ratio "
+                     f"{h['memory_ratio_ritr_to_fixed']:.2f} ({h['memory_note']}; baseline {base / 2**20:.0f} MiB).")
+    for line in result.get("unexpected", []):
+        lines.append(f"Unexpected: {line}.")
+    return "\n".join(lines)
+
+
+def plot(result, path):
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    colours = dict(zip(result["mu"], ("tab:green", "tab:blue", "tab:red", "tab:purple")))
+    for r in result["runs"]:
+        if "centroid_over_time" not in r:
+            continue
+        t, y = zip(*r["centroid_over_time"])
+        label = f"{r['name']} ({r.get('n_vertices', '?')} v)"
+        if r["adaptivity"]:
+            ax.plot(t, y, color=colours.get(r["mu"]), linewidth=2.5, label=label)
+        elif r["refinements"] == 0:
+            ax.plot(t, y, color=colours.get(r["mu"]), linewidth=1.5, linestyle="--", label=label)
+        else:
+            ax.plot(t, y, color="grey", linewidth=0.8, alpha=0.4 + 0.15 * r["refinements"], label=label)
+    ax.axhline(result["pass_below"], color="black", linewidth=0.6, linestyle=":")
+    ax.set_xlabel("time")
+    ax.set_ylabel("centroid height")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    p.add_argument("result")
+    p.add_argument("--plots", help="directory for the PNG (default: beside the JSON)")
+    args = p.parse_args()
+    with open(args.result) as f:
+        result = json.load(f)
+    name = os.path.splitext(os.path.basename(args.result))[0]
+    directory = args.plots or os.path.dirname(os.path.abspath(args.result))
+    os.makedirs(directory, exist_ok=True)
+    plot(result, os.path.join(directory, name + "_centroid.png"))
+    print(table(result))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
