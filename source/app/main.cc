@@ -1,6 +1,7 @@
 // ritr: frictionally contacting elastodynamics and statics with IPC, on fixed or r-adapted
 // meshes. Parses the command line and the scene, runs it, maps failures to exit codes:
 // 0 success, 2 bad input, 3 a step that did not converge, 1 anything else.
+#include <ritr/common/thread_pools.h>
 #include <ritr/scene/parameters.h>
 #include <ritr/time/simulation.h>
 
@@ -75,6 +76,7 @@ int main(int argc, char **argv)
   try
     {
       const ritr::Scene scene = ritr::read_scene(argument);
+      ritr::use_one_thread_pool();
       std::unique_ptr<tbb::global_control> threads;
       if (scene.solver.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
