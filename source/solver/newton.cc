@@ -39,8 +39,6 @@ namespace ritr
     NewtonResult    result;
     Eigen::VectorXd g(n), dz(n);
     Triplets        h;
-    Eigen::SparseMatrix<double> reduced(n_free, n_free);
-    Triplets                    reduced_triplets;
     // Adaptive projection: projected Newton until it crawls, then the exact Hessian.
     bool         adaptive = settings.projection == HessianProjection::adaptive;  // may still switch
     bool         exact    = settings.projection == HessianProjection::never || (adaptive && settings.start_exact);
@@ -74,23 +72,9 @@ namespace ritr
         for (Eigen::Index i = 0; i < n; ++i)
           if (free_index[i] >= 0)
             rhs[free_index[i]] = -g[i];
-        reduced_triplets.clear();
-        reduced_triplets.reserve(h.size());
-        for (const auto &t : h)
-          {
-            const int r = free_index[t.row()], c = free_index[t.col()];
-            if (r >= 0 && c >= 0)
-              {
-                if (r >= c)
-                  reduced_triplets.emplace_back(r, c, t.value());
-              }
-            else if (r >= 0)
-              rhs[r] -= t.value() * dz[t.col()];
-          }
-        reduced.setFromTriplets(reduced_triplets.begin(), reduced_triplets.end());
-        reduced.makeCompressed();
+        system_.assemble(h, free_index, n_free, dz, rhs);
         const auto   start = std::chrono::steady_clock::now();
-        const double shift = cholesky_.factorize(reduced);
+        const double shift = cholesky_.factorize(system_.matrix());
         const Eigen::VectorXd dz_free = cholesky_.solve(rhs);
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (Eigen::Index i = 0; i < n; ++i)

@@ -28,7 +28,7 @@ TEST(Cantilever, TipDeflectionConvergesToEulerBernoulli)
       s.bodies[0].geometry.refinements        = refinements;
       s.materials[0]                          = Material{MaterialModel::linear, E, nu, rho};
       s.gravity                               = {0, -g, 0};
-      s.dirichlet.push_back(DirichletScene{{}, "1e-9 - x", "0;0"});
+      s.dirichlet.push_back(DirichletScene{{}, "1e-9 - x", "0;0", {}});
       Simulation<2> sim(s);
       sim.advance();
       // Mean vertical displacement of the tip (x = L).

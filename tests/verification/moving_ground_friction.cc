@@ -46,6 +46,8 @@ TEST(MovingGroundFriction, BlockIsDraggedAtMuGThenRidesAlong)
           EXPECT_NEAR(vx, mu * g * t, 0.03 * mu * g * t);
         }
       if (t > t_catch + 0.1)
-        EXPECT_NEAR(vx, V, 0.02 * V) << "at t = " << t;
+        {
+          EXPECT_NEAR(vx, V, 0.02 * V) << "at t = " << t;
+        }
     }
 }

@@ -26,7 +26,7 @@ namespace
   // (the predictor is linear, so Simpson's rule is exact on every element).
   double discrete_optimum(const double a, const double b, Eigen::Vector4d *x_out = nullptr)
   {
-    const std::array<double, 4> X{0, a, b, 1};
+    const std::array<double, 4> X{{0, a, b, 1}};
     Eigen::Matrix4d             A = Eigen::Matrix4d::Zero();
     Eigen::Vector4d             rhs = Eigen::Vector4d::Zero();
     double                      constant = 0;

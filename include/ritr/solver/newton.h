@@ -6,6 +6,7 @@
 // CCD certifies as intersection-free; where the predicted decrease is below the energy's
 // round-off, a trial is accepted when it lowers the norm of the free gradient instead.
 #include <ritr/solver/hessian_projection.h>
+#include <ritr/solver/reduced_system.h>
 #include <ritr/solver/sparse_cholesky.h>
 
 #include <Eigen/Sparse>
@@ -93,6 +94,7 @@ namespace ritr
     double seconds_in_linear_solves() const { return linear_seconds_; }
 
   private:
+    ReducedSystem  system_;  // keeps its pattern across iterations and solves
     SparseCholesky cholesky_;
     double         linear_seconds_ = 0;
   };

@@ -1,0 +1,66 @@
+#include <ritr/solver/reduced_system.h>
+
+#include <algorithm>
+
+namespace ritr
+{
+  bool ReducedSystem::same_structure(const std::vector<Eigen::Triplet<double>> &hessian,
+                                     const std::vector<int>                   &free_index) const
+  {
+    if (hessian.size() != rows_.size() || free_index != free_index_)
+      return false;
+    for (std::size_t i = 0; i < hessian.size(); ++i)
+      if (hessian[i].row() != rows_[i] || hessian[i].col() != columns_[i])
+        return false;
+    return true;
+  }
+
+  void ReducedSystem::build_pattern(const std::vector<Eigen::Triplet<double>> &hessian,
+                                    const std::vector<int> &free_index, const int n_free)
+  {
+    std::vector<Eigen::Triplet<double>> lower;
+    lower.reserve(hessian.size());
+    rows_.resize(hessian.size());
+    columns_.resize(hessian.size());
+    for (std::size_t i = 0; i < hessian.size(); ++i)
+      {
+        rows_[i]    = hessian[i].row();
+        columns_[i] = hessian[i].col();
+        const int r = free_index[rows_[i]], c = free_index[columns_[i]];
+        if (r >= 0 && c >= 0 && r >= c)
+          lower.emplace_back(r, c, 0.0);
+      }
+    free_index_ = free_index;
+    matrix_.resize(n_free, n_free);
+    matrix_.setFromTriplets(lower.begin(), lower.end());
+    matrix_.makeCompressed();
+    slot_.resize(hessian.size());
+    const int *outer = matrix_.outerIndexPtr(), *inner = matrix_.innerIndexPtr();
+    for (std::size_t i = 0; i < hessian.size(); ++i)
+      {
+        const int r = free_index[rows_[i]], c = free_index[columns_[i]];
+        if (r >= 0 && c >= 0)
+          slot_[i] = r >= c ? static_cast<int>(std::lower_bound(inner + outer[c], inner + outer[c + 1], r) - inner) : -1;
+        else
+          slot_[i] = r >= 0 ? -2 - r : -1;
+      }
+    ++n_builds_;
+  }
+
+  void ReducedSystem::assemble(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index,
+                               const int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs)
+  {
+    if (!same_structure(hessian, free_index))
+      build_pattern(hessian, free_index, n_free);
+    double *values = matrix_.valuePtr();
+    std::fill(values, values + matrix_.nonZeros(), 0.0);
+    for (std::size_t i = 0; i < hessian.size(); ++i)
+      {
+        const int s = slot_[i];
+        if (s >= 0)
+          values[s] += hessian[i].value();
+        else if (s <= -2)
+          rhs[-2 - s] -= hessian[i].value() * prescribed_step[columns_[i]];
+      }
+  }
+} // namespace ritr
