@@ -14,6 +14,9 @@ import sys
 
 import matplotlib
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ladder_report import cost_cells, cost_ratio_text, plot_prefix  # noqa: E402
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -26,17 +29,14 @@ def table(result):
     for r in result["runs"]:
         outcome = ("passes" if r["passes"] else "caught") if "passes" in r else "-"
         centroid = f"{r['final_centroid']:.3f}" if "final_centroid" in r else "-"
-        lines.append(f"| {r['name']} | {r['mu']:g} | {r.get('n_vertices', '?'):,} | {r['wall_seconds']:.1f} "
-                     f"| {(r['peak_rss_bytes'] - base) / 2**20:.0f} | {r.get('total_newton_iterations', '-')} "
-                     f"| {r.get('total_outer_iterations', '-')} | {centroid} | {outcome} | {r['exit_code']} |")
+        lines.append(f"| {r['name']} | {r['mu']:g} | {cost_cells(r, base)} | {centroid} | {outcome} | {r['exit_code']} |")
     lines += ["", f"A run passes when its centroid ends below y = {result['pass_below']:g}."]
     h = result["headline"]
     if not h.get("matching_fixed"):
         lines.append(f"No headline: {h['why']}.")
     else:
         lines.append(f"Headline: `{h['matching_fixed']}` ({h['why']}): {h['vertex_ratio']:.1f}x r-ITR's vertices, "
-                     f"time ratio r-ITR/fixed {h['time_ratio_ritr_to_fixed']:.2f}, memory ratio "
-                     f"{h['memory_ratio_ritr_to_fixed']:.2f} ({h['memory_note']}; baseline {base / 2**20:.0f} MiB).")
+                     f"{cost_ratio_text(h, base)}.")
     for line in result.get("unexpected", []):
         lines.append(f"Unexpected: {line}.")
     return "\n".join(lines)
@@ -72,10 +72,7 @@ def main():
     args = p.parse_args()
     with open(args.result) as f:
         result = json.load(f)
-    name = os.path.splitext(os.path.basename(args.result))[0]
-    directory = args.plots or os.path.dirname(os.path.abspath(args.result))
-    os.makedirs(directory, exist_ok=True)
-    plot(result, os.path.join(directory, name + "_centroid.png"))
+    plot(result, plot_prefix(args.result, args.plots) + "_centroid.png")
     print(table(result))
     return 0
 

@@ -36,9 +36,7 @@ def table(result):
             accuracy = f"{r['mean_hausdorff']:.3g} | {r['max_hausdorff']:.3g}"
         else:
             accuracy = "- | -"
-        lines.append(f"| {r['name']} | {r.get('n_vertices', '?'):,} | {r['wall_seconds']:.1f} "
-                     f"| {(r['peak_rss_bytes'] - base) / 2**20:.0f} | {r.get('total_newton_iterations', '-')} "
-                     f"| {r.get('total_outer_iterations', '-')} | {r.get('final_energy', float('nan')):.6g} "
+        lines.append(f"| {r['name']} | {cost_cells(r, base)} | {r.get('final_energy', float('nan')):.6g} "
                      f"| {accuracy} | {r['exit_code']} |")
     if result.get("pass_below") is not None:
         lines += ["", f"Passes (lowest deformed point below y = {result['pass_below']:g}): " + ", ".join(
@@ -57,10 +55,26 @@ def table(result):
         lines.append("")
         claim = "is compared with" if result.get("accuracy") == "energy" else "matches"
         lines.append(f"Headline: r-ITR {claim} `{h['matching_fixed']}` ({h['why']}): "
-                     f"{h['vertex_ratio']:.1f}x its vertices, time ratio r-ITR/fixed "
-                     f"{h['time_ratio_ritr_to_fixed']:.2f}, memory ratio {h['memory_ratio_ritr_to_fixed']:.2f} "
-                     f"({h['memory_note']}; baseline {base / 2**20:.0f} MiB).")
+                     f"{h['vertex_ratio']:.1f}x its vertices, {cost_ratio_text(h, base)}.")
     return "\n".join(lines)
+
+
+def cost_cells(run, base):
+    """The table cells vertices | wall | peak RSS - baseline | Newton its | outer its of a run."""
+    return (f"{run.get('n_vertices', '?'):,} | {run['wall_seconds']:.1f} | {(run['peak_rss_bytes'] - base) / 2**20:.0f} "
+            f"| {run.get('total_newton_iterations', '-')} | {run.get('total_outer_iterations', '-')}")
+
+
+def cost_ratio_text(headline, base):
+    return (f"time ratio r-ITR/fixed {headline['time_ratio_ritr_to_fixed']:.2f}, memory ratio "
+            f"{headline['memory_ratio_ritr_to_fixed']:.2f} ({headline['memory_note']}; baseline {base / 2**20:.0f} MiB)")
+
+
+def plot_prefix(result_path, plots_directory):
+    """DIR/NAME for the plots of RESULT.json: DIR is plots_directory or the JSON's folder."""
+    directory = plots_directory or os.path.dirname(os.path.abspath(result_path))
+    os.makedirs(directory, exist_ok=True)
+    return os.path.join(directory, os.path.splitext(os.path.basename(result_path))[0])
 
 
 def mark(ax, runs, x, y):
@@ -132,10 +146,7 @@ def main():
     args = p.parse_args()
     with open(args.result) as f:
         result = json.load(f)
-    name = os.path.splitext(os.path.basename(args.result))[0]
-    directory = args.plots or os.path.dirname(os.path.abspath(args.result))
-    os.makedirs(directory, exist_ok=True)
-    plots(result, os.path.join(directory, name))
+    plots(result, plot_prefix(args.result, args.plots))
     print(table(result))
     return 0
 
