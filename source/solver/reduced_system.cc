@@ -44,7 +44,6 @@ namespace ritr
         else
           slot_[i] = r >= 0 ? -2 - r : -1;
       }
-    ++n_builds_;
   }
 
   void ReducedSystem::assemble(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index,

@@ -21,7 +21,6 @@ namespace ritr
                   int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs);
 
     const Eigen::SparseMatrix<double> &matrix() const { return matrix_; }
-    unsigned int n_pattern_builds() const { return n_builds_; }
 
   private:
     bool same_structure(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index) const;
@@ -33,6 +32,5 @@ namespace ritr
     // Per triplet: >= 0 its slot in matrix_.valuePtr(); -1 not used (upper triangle or a
     // prescribed row); <= -2 a free row -2 - slot coupled to a prescribed column.
     std::vector<int> slot_;
-    unsigned int     n_builds_ = 0;
   };
 } // namespace ritr
