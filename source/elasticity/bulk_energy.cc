@@ -77,6 +77,29 @@ namespace ritr
       return strain_energy_density<dim, SecondOrderDual<dim * dim>>(m, f);
     }
 
+    // d2Psi/dF2 (flattened as above). Neo-Hookean in closed form -- the dual numbers cost
+    // as much as the rest of an element's Hessian --
+    //   mu I + lambda F^-T (x) F^-T + (mu - lambda ln J) dF^-T/dF-term,
+    // i.e. H_(ij)(kl) = mu d_ik d_jl + lambda Finv_ji Finv_lk + (mu - lambda ln J) Finv_jk Finv_li;
+    // the other models through the dual numbers.
+    template <int dim>
+    Eigen::Matrix<double, dim * dim, dim * dim> energy_density_hessian(const Material &m, const SmallMatrix<dim, double> &F)
+    {
+      if (m.model != MaterialModel::neo_hookean)
+        return energy_density_derivatives<dim>(m, F).hess;
+      const double mu = m.mu(dim), lambda = m.lambda(dim);
+      const auto   f_inv = inverse<dim, double>(F);
+      const double curvature = mu - lambda * std::log(determinant<dim, double>(F));
+      Eigen::Matrix<double, dim * dim, dim * dim> h;
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j)
+          for (int k = 0; k < dim; ++k)
+            for (int l = 0; l < dim; ++l)
+              h(i * dim + j, k * dim + l) = (i == k && j == l ? mu : 0.0) + lambda * f_inv[j][i] * f_inv[l][k] +
+                                            curvature * f_inv[j][k] * f_inv[l][i];
+      return h;
+    }
+
     template <int dim>
     void gather(const Eigen::VectorXd &v, const std::array<unsigned int, dim + 1> &cell,
                 CellNodes<dim, double> &out)
@@ -189,8 +212,7 @@ namespace ritr
             gather<dim>(x, cell, xe);
             gather<dim>(u, cell, ue);
             const auto geo = cell_geometry<dim>(xe, ue);
-            Eigen::Matrix<double, dim * dim, dim * dim> psi_hessian =
-              energy_density_derivatives<dim>(mat, geo.F).hess;
+            Eigen::Matrix<double, dim * dim, dim * dim> psi_hessian = energy_density_hessian<dim>(mat, geo.F);
             // The map F -> x is linear, so a PSD density Hessian gives a PSD element block;
             // a successful Cholesky factorization proves it already is and saves the
             // eigendecomposition.
