@@ -5,6 +5,7 @@ extern "C"
 {
   void openblas_set_num_threads(int) __attribute__((weak));
   void omp_set_num_threads(int) __attribute__((weak));
+  void omp_set_max_active_levels(int) __attribute__((weak));
 }
 
 namespace ritr
@@ -15,5 +16,10 @@ namespace ritr
       openblas_set_num_threads(1);
     if (omp_set_num_threads)
       omp_set_num_threads(1);
+    // CHOLMOD's supernodal factorization asks for a team of 4 in a num_threads clause,
+    // which overrides the line above; with no active level allowed, every parallel region
+    // runs on the calling thread alone.
+    if (omp_set_max_active_levels)
+      omp_set_max_active_levels(0);
   }
 } // namespace ritr
