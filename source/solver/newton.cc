@@ -105,11 +105,20 @@ namespace ritr
         Eigen::VectorXd trial, trial_gradient(n);
         double          trial_energy = e0;
         bool            judged_by_gradient = false;
+        // A step below the round-off of the positions changes nothing: judged by the
+        // gradient, it was once "accepted" 170 times in a row at alpha ~2e-9 (the gradient's
+        // own round-off decided), until the iteration limit.
+        const double position_round_off = 4 * std::numeric_limits<double>::epsilon() * z.lpNorm<Eigen::Infinity>();
         for (;; alpha *= 0.5)
           {
             ++result.line_search_trials;
-            if (alpha < settings.min_step)
+            if (alpha < settings.min_step || alpha * result.last_step_norm < position_round_off)
               {
+                // Projected steps that cannot move z: the projected Hessian's direction is not
+                // a descent direction that the energy or the gradient can resolve; the exact
+                // Hessian gets a try from the same z.
+                if (adaptive && !exact && !kinematic_pending)
+                  break;
                 // A converged-looking but tiny step near machine precision counts as done.
                 if (!kinematic_pending && std::abs(decrease) <= 1e-12 * std::max(1.0, std::abs(e0)))
                   {
@@ -118,7 +127,8 @@ namespace ritr
                   }
                 if (exact && settings.projection == HessianProjection::adaptive)
                   break;  // projected Newton for the rest of the solve, from the same z
-                result.failure = "line search failed (step below " + std::to_string(settings.min_step) + ")";
+                result.failure = "line search failed (step below " + std::to_string(settings.min_step) +
+                                 " of the Newton step or below the positions' round-off)";
                 return result;
               }
             trial              = z + alpha * dz;
@@ -144,9 +154,11 @@ namespace ritr
             if (free_norm(trial_gradient, free_index) < gradient_norm)
               break;
           }
-        if (alpha < settings.min_step)
+        if (alpha < settings.min_step || alpha * result.last_step_norm < position_round_off)
           {
-            exact = adaptive = false;
+            // Stalled: projected -> exact, or exact -> projected for the rest of the solve.
+            adaptive = !exact;
+            exact    = !exact;
             continue;
           }
         z = trial;
