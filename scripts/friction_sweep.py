@@ -26,8 +26,7 @@ from types import SimpleNamespace
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from frame_metrics import centroid_heights  # noqa: E402
-from ladder import body_sections, cost_ratios, measure, run_rung  # noqa: E402
-from prm_variant import entries  # noqa: E402
+from ladder import cost_ratios, measure, rung_overrides, run_rung  # noqa: E402
 
 
 def outcome(run):
@@ -86,17 +85,13 @@ def main():
 
     with open(args.scene) as f:
         scene_text = f.read()
-    settings = entries(scene_text)
     work = args.work or tempfile.mkdtemp(prefix="friction-sweep-")
     os.makedirs(work, exist_ok=True)
     _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
     ladder_args = SimpleNamespace(scene=args.scene, quick=args.quick, ritr=args.ritr)
 
     def run(name, mu, k, adaptivity):
-        overrides = {"Adaptivity/enabled": "true" if adaptivity else "false",
-                     "Contact/friction coefficient": repr(mu)}
-        for body in body_sections(scene_text):
-            overrides[f"{body}/refinements"] = str(int(settings.get(f"{body}/refinements", "0")) + k)
+        overrides = dict(rung_overrides(scene_text, k, adaptivity), **{"Contact/friction coefficient": repr(mu)})
         r = dict(run_rung(ladder_args, scene_text, name, overrides, work), mu=mu, refinements=k, adaptivity=adaptivity)
         if r["exit_code"] == 0:
             r["centroid_over_time"] = centroid_heights(r["directory"])

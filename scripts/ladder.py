@@ -45,6 +45,15 @@ def body_sections(text):
     return sorted({path.split("/")[0] for path in entries(text) if path.startswith("Body ")}) or ["Body 0"]
 
 
+def rung_overrides(scene_text, k, adaptivity):
+    """The overrides of rung k: adaptivity on or off, every body refined k more times."""
+    settings = entries(scene_text)
+    overrides = {"Adaptivity/enabled": "true" if adaptivity else "false"}
+    for body in body_sections(scene_text):
+        overrides[f"{body}/refinements"] = str(int(settings.get(f"{body}/refinements", "0")) + k)
+    return overrides
+
+
 def run_rung(args, scene_text, name, overrides, work):
     directory = os.path.join(work, name)
     overrides = dict(overrides, **{"output directory": directory})
@@ -193,12 +202,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
 
-    settings = entries(scene_text)
-
     def rung(name, k, adaptivity):
-        overrides = dict(common, **{"Adaptivity/enabled": "true" if adaptivity else "false"})
-        for body in body_sections(scene_text):
-            overrides[f"{body}/refinements"] = str(int(settings.get(f"{body}/refinements", "0")) + k)
+        overrides = dict(common, **rung_overrides(scene_text, k, adaptivity))
         return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, adaptivity=adaptivity)
 
     # runs[0] is r-ITR on the scene's own mesh; further r-ITR rungs (paper Fig. 20) follow the fixed ones.

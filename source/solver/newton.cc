@@ -109,10 +109,13 @@ namespace ritr
         // gradient, it was once "accepted" 170 times in a row at alpha ~2e-9 (the gradient's
         // own round-off decided), until the iteration limit.
         const double position_round_off = 4 * std::numeric_limits<double>::epsilon() * z.lpNorm<Eigen::Infinity>();
+        const auto   stalled = [&](const double a) {
+          return a < settings.min_step || a * result.last_step_norm < position_round_off;
+        };
         for (;; alpha *= 0.5)
           {
             ++result.line_search_trials;
-            if (alpha < settings.min_step || alpha * result.last_step_norm < position_round_off)
+            if (stalled(alpha))
               {
                 // Projected steps that cannot move z: the projected Hessian's direction is not
                 // a descent direction that the energy or the gradient can resolve; the exact
@@ -154,7 +157,7 @@ namespace ritr
             if (free_norm(trial_gradient, free_index) < gradient_norm)
               break;
           }
-        if (alpha < settings.min_step || alpha * result.last_step_norm < position_round_off)
+        if (stalled(alpha))
           {
             // Stalled: projected -> exact, or exact -> projected for the rest of the solve.
             adaptive = !exact;
