@@ -1,6 +1,6 @@
 #include <ritr/adaptivity/measure_barrier_model.h>
-#include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/common/log_barrier.h>
+#include <ritr/common/simplex_measure.h>
 #include <ritr/common/small_matrix.h>
 
 #include <cmath>

@@ -1,7 +1,4 @@
 #include <ritr/adaptivity/reference_penalties.h>
-#include <ritr/common/log_barrier.h>
-#include <ritr/common/psd_projection.h>
-#include <ritr/common/second_order_dual.h>
 
 #include <Eigen/Geometry>
 
@@ -118,62 +115,9 @@ namespace ritr
     return worst;
   }
 
-  template <int dim>
-  SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives(const Eigen::VectorXd &u,
-                                                           const typename SimplexMesh<dim>::Cell &cell)
-  {
-    using Dual = SecondOrderDual<dim *(dim + 1)>;
-    std::array<std::array<Dual, dim>, dim + 1> nodes;
-    for (int a = 0; a <= dim; ++a)
-      for (int k = 0; k < dim; ++k)
-        nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
-    return simplex_measure<dim, Dual>(nodes);
-  }
-
-  template <int dim>
-  double reference_measure_barrier(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &u, const double w_hat,
-                                   const double kappa, Eigen::VectorXd *gradient, Triplets *hessian,
-                                   const bool project_psd)
-  {
-    constexpr int n = dim * (dim + 1);
-    double energy   = 0;
-    for (const auto &cell : mesh.cells)
-      {
-        const double w = simplex_measure<dim, double>(cell_nodes<dim>(u, cell));
-        if (w >= w_hat)
-          continue;
-        if (w <= 0)
-          return std::numeric_limits<double>::infinity();
-        energy += kappa * log_barrier(w, w_hat);
-        if (!gradient && !hessian)
-          continue;
-        const auto   measure = cell_measure_derivatives<dim>(u, cell);
-        const double db      = log_barrier_derivative(w, w_hat);
-        const double d2b     = log_barrier_second_derivative(w, w_hat);
-        if (gradient)
-          for (int i = 0; i < n; ++i)
-            (*gradient)[cell[i / dim] * dim + i % dim] += kappa * db * measure.grad[i];
-        if (hessian)
-          {
-            Eigen::Matrix<double, n, n> block =
-              kappa * (d2b * measure.grad * measure.grad.transpose() + db * measure.hess);
-            if (project_psd)
-              block = project_to_psd(block);
-            for (int i = 0; i < n; ++i)
-              for (int j = 0; j < n; ++j)
-                hessian->emplace_back(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim, block(i, j));
-          }
-      }
-    return energy;
-  }
-
 #define RITR_INSTANTIATE(dim)                                                                                    \
   template std::vector<SlidingConstraint<dim>> classify_sliding<dim>(const SimplexMesh<dim> &, double);          \
-  template double sliding_violation<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &);  \
-  template SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives<dim>(const Eigen::VectorXd &,                \
-                                                                         const SimplexMesh<dim>::Cell &);        \
-  template double reference_measure_barrier<dim>(const SimplexMesh<dim> &, const Eigen::VectorXd &, double,      \
-                                                 double, Eigen::VectorXd *, Triplets *, bool);
+  template double sliding_violation<dim>(const std::vector<SlidingConstraint<dim>> &, const Eigen::VectorXd &);
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)

@@ -44,16 +44,16 @@ namespace ritr
   }
 
   template <int dim>
-  std::vector<double> cell_von_mises_stresses(const BulkEnergy<dim> &bulk, const Eigen::VectorXd &x,
+  std::vector<double> cell_von_mises_stresses(const CellMaterials<dim> &materials, const Eigen::VectorXd &x,
                                               const Eigen::VectorXd &u)
   {
-    const auto         &mesh = bulk.mesh();
+    const auto         &mesh = materials.mesh();
     std::vector<double> stresses(mesh.n_cells());
     for (unsigned int c = 0; c < mesh.n_cells(); ++c)
       {
         const auto F = deformation_gradient<dim, double>(cell_nodes<dim>(x, mesh.cells[c]),
                                                          cell_nodes<dim>(u, mesh.cells[c]));
-        stresses[c]  = von_mises(cauchy_stress<dim>(bulk.cell_material(c), F));
+        stresses[c]  = von_mises(cauchy_stress<dim>(materials.of_cell(c), F));
       }
     return stresses;
   }
@@ -61,10 +61,10 @@ namespace ritr
   template SmallMatrix<3, double> cauchy_stress<1>(const Material &, const SmallMatrix<1, double> &);
   template SmallMatrix<3, double> cauchy_stress<2>(const Material &, const SmallMatrix<2, double> &);
   template SmallMatrix<3, double> cauchy_stress<3>(const Material &, const SmallMatrix<3, double> &);
-  template std::vector<double> cell_von_mises_stresses<1>(const BulkEnergy<1> &, const Eigen::VectorXd &,
+  template std::vector<double> cell_von_mises_stresses<1>(const CellMaterials<1> &, const Eigen::VectorXd &,
                                                           const Eigen::VectorXd &);
-  template std::vector<double> cell_von_mises_stresses<2>(const BulkEnergy<2> &, const Eigen::VectorXd &,
+  template std::vector<double> cell_von_mises_stresses<2>(const CellMaterials<2> &, const Eigen::VectorXd &,
                                                           const Eigen::VectorXd &);
-  template std::vector<double> cell_von_mises_stresses<3>(const BulkEnergy<3> &, const Eigen::VectorXd &,
+  template std::vector<double> cell_von_mises_stresses<3>(const CellMaterials<3> &, const Eigen::VectorXd &,
                                                           const Eigen::VectorXd &);
 } // namespace ritr

@@ -1,6 +1,5 @@
 #include <ritr/common/input_error.h>
 #include <ritr/problem/obstacle_reader.h>
-#include <ritr/mesh/simplex_rules.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/problem/problem.h>
 
@@ -57,6 +56,7 @@ namespace ritr
     p->build_obstacles();
     p->build_dirichlet_conditions();
     p->build_contact();
+    p->build_terms();
     p->check_initial_state();
     return p;
   }
@@ -70,7 +70,7 @@ namespace ritr
     try
       {
         mesh = build_mesh<dim>(bodies);
-        bulk = std::make_unique<BulkEnergy<dim>>(mesh, scene.materials);
+        materials = std::make_unique<CellMaterials<dim>>(mesh, scene.materials);
       }
     catch (const InputError &)
       {
@@ -229,14 +229,8 @@ namespace ritr
   template <int dim>
   void Problem<dim>::build_contact()
   {
-    if (!scene.contact.enabled)
-      return;
-    ContactSettings settings;
-    settings.dhat                 = scene.contact.dhat;
-    settings.friction_coefficient = scene.contact.friction_coefficient;
-    settings.epsilon_v_times_h    = scene.contact.epsilon_v * scene.time_step;
-    settings.self_contact         = scene.contact.self_contact;
-    contact = std::make_unique<ContactPotential<dim>>(mesh, obstacles, settings);
+    if (scene.contact.enabled)
+      collisions = std::make_unique<CollisionMesh<dim>>(mesh, obstacles, scene.contact.dhat, scene.contact.self_contact);
   }
 
   template <int dim>
@@ -254,13 +248,13 @@ namespace ritr
       throw InputError(file + ": Body: the mesh has degenerate (zero-measure) elements");
     if (!(min_deformed_jacobian(mesh, initial_positions, initial_reference) > 0))
       throw InputError(file + ": Dirichlet: the initial prescribed displacement inverts elements");
-    if (contact)
+    if (collisions)
       {
         Eigen::VectorXd z(initial_positions.size() + initial_obstacle_positions.size());
         z << initial_positions, initial_obstacle_positions;
         // Distances at round-off level are contact too: the barrier could not push them apart.
-        const double d = contact->minimum_distance(z);
-        if (!(d > 1e-12 * contact->bbox_diagonal(z)) || contact->has_intersections(z))
+        const double d = collisions->minimum_distance(z);
+        if (!(d > 1e-12 * collisions->bbox_diagonal(z)) || collisions->has_intersections(z))
           throw InputError(file + ": the initial configuration intersects (bodies or obstacles overlap or touch)");
       }
   }

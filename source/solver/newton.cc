@@ -51,6 +51,7 @@ namespace ritr
         const double e0 = objective.value(z);
         if (!std::isfinite(e0))
           {
+            result.status  = NewtonStatus::not_finite;
             result.failure = "the energy is not finite at the start of the iteration";
             return result;
           }
@@ -81,14 +82,15 @@ namespace ritr
           if (free_index[i] >= 0)
             dz[i] = dz_free[free_index[i]];
 
-        result.last_step_norm = dz.lpNorm<Eigen::Infinity>();
+        objective.limit_step(z, dz);
+        result.last_step_norm = objective.step_norm(dz);
         result.energy         = e0;
         // A step from a shifted Hessian is small because of the shift, not because z is near
         // the minimum (the barrier's negative curvature at tiny gaps forces huge shifts): it
         // does not count as converged.
         if (!kinematic_pending && result.last_step_norm <= settings.tolerance && !(exact && shift > 0))
           {
-            result.converged = true;
+            result.status = NewtonStatus::converged;
             return result;
           }
 
@@ -123,13 +125,15 @@ namespace ritr
                 if (adaptive && !exact && !kinematic_pending)
                   break;
                 // A converged-looking but tiny step near machine precision counts as done.
-                if (!kinematic_pending && std::abs(decrease) <= 1e-12 * std::max(1.0, std::abs(e0)))
+                if (settings.round_off_stall_converges && !kinematic_pending &&
+                    std::abs(decrease) <= 1e-12 * std::max(1.0, std::abs(e0)))
                   {
-                    result.converged = true;
+                    result.status = NewtonStatus::converged;
                     return result;
                   }
                 if (exact && settings.projection == HessianProjection::adaptive)
                   break;  // projected Newton for the rest of the solve, from the same z
+                result.status  = NewtonStatus::line_search_failed;
                 result.failure = "line search failed (step below " + std::to_string(settings.min_step) +
                                  " of the Newton step or below the positions' round-off)";
                 return result;
@@ -142,7 +146,7 @@ namespace ritr
               continue;
             if (!use_armijo)
               break;
-            if (-alpha * decrease > round_off)
+            if (!settings.judge_by_gradient || -alpha * decrease > round_off)
               {
                 if (e <= e0 + settings.armijo * alpha * decrease)
                   break;
@@ -170,6 +174,7 @@ namespace ritr
           for (Eigen::Index i = 0; i < n; ++i)
             if (kinematic[i])
               z[i] = targets[i];
+        objective.accept(z);
         if (settings.monitor)
           settings.monitor({result.iterations, e0, trial_energy - e0, decrease, result.last_step_norm,
                             gradient_norm, ccd_bound, alpha, kinematic_pending, judged_by_gradient, shift, exact},
@@ -184,6 +189,7 @@ namespace ritr
             exact = crawling >= settings.crawl_iterations;
           }
       }
+    result.status  = NewtonStatus::iteration_limit;
     result.failure = "no convergence in " + std::to_string(settings.max_iterations) + " Newton iterations";
     return result;
   }

@@ -30,6 +30,11 @@ namespace ritr
         if (r >= 0 && c >= 0 && r >= c)
           lower.emplace_back(r, c, 0.0);
       }
+    // The diagonal is always in the pattern: an unknown without any Hessian entry (a flat
+    // outer direction) then gets a structural zero that the shift can regularise, where an
+    // empty matrix would be rejected by CHOLMOD.
+    for (int i = 0; i < n_free; ++i)
+      lower.emplace_back(i, i, 0.0);
     free_index_ = free_index;
     matrix_.resize(n_free, n_free);
     matrix_.setFromTriplets(lower.begin(), lower.end());

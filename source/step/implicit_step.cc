@@ -1,30 +1,28 @@
 #include <ritr/step/implicit_step.h>
+#include <ritr/terms/friction_term.h>
 
 namespace ritr
 {
   template <int dim>
-  ImplicitStep<dim>::ImplicitStep(BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
+  ImplicitStep<dim>::ImplicitStep(TermSum<dim> &terms, const CellMaterials<dim> &materials,
                                   const std::vector<bool> &kinematic, const ImplicitStepSettings &settings)
-    : bulk_(bulk)
-    , contact_(contact)
+    : terms_(terms)
+    , materials_(materials)
     , kinematic_(kinematic)
     , settings_(settings)
-    , reference_(bulk.mesh().reference)
-    , potential_(bulk, contact, reference_)
+    , objective_(terms)
   {}
 
   template <int dim>
   typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
                                                                       const Eigen::VectorXd &targets,
-                                                                      const bool near_solution)
+                                                                      const bool             near_solution)
   {
-    reference_ = u;
-    if (contact_)
-      contact_->set_reference(u);
+    terms_.set_reference(u);
     NewtonSettings newton = settings_.newton;
     newton.start_exact    = near_solution;
-    const NewtonResult r  = newton_.minimize(potential_, z, kinematic_, targets, newton);
-    if (!r.converged)
+    const NewtonResult r  = newton_.minimize(objective_, z, kinematic_, targets, newton);
+    if (r.status != NewtonStatus::converged)
       throw ConvergenceError(r.failure);
     return {r.iterations, r.line_search_trials, r.energy};
   }
@@ -34,36 +32,41 @@ namespace ritr
                                                                             Eigen::VectorXd        &z)
   {
     const Eigen::VectorXd &u = step.u_start;
-    potential_.disable_adaptive_stiffness();
-    unsigned int friction_iterations = 1;
-    if (contact_)
+    terms_.begin_step(step);
+    terms_.set_reference(u);
+    objective_.disable_adaptive_stiffness();
+    auto *barrier  = terms_.template find<ContactBarrierTerm<dim>>();
+    auto *friction = terms_.template find<FrictionTerm<dim>>();
+    if (barrier)
       {
-        reference_ = u;
-        contact_->set_reference(u);
-        const double diagonal = contact_->bbox_diagonal(z);
+        const double diagonal = terms_.collision_mesh().bbox_diagonal(z);
         if (settings_.barrier_stiffness > 0)
-          contact_->set_stiffness(settings_.barrier_stiffness);
+          barrier->set_stiffness(settings_.barrier_stiffness);
         else
           {
-            const auto stiffness = contact::initial_barrier_stiffness(
-              diagonal, settings_.dhat, bulk_.nodal_masses(u).mean(), potential_.bulk_gradient(z),
-              contact_->barrier_gradient(z, contact_->candidates_at(z)));
-            contact_->set_stiffness(stiffness.kappa);
-            potential_.enable_adaptive_stiffness(stiffness.kappa_max, diagonal);
+            // IPC's rule balances the barrier's gradient against everything else's.
+            const CollisionCandidates candidates = terms_.candidates_at(z);
+            Eigen::VectorXd           others     = Eigen::VectorXd::Zero(z.size());
+            terms_.add_energy_gradient(z, candidates, others, TermSum<dim>::Select::without_contact);
+            const auto stiffness = contact::initial_barrier_stiffness(diagonal, terms_.collision_mesh().dhat(),
+                                                                      materials_.nodal_masses(u).mean(), others,
+                                                                      barrier->unscaled_gradient(z, candidates));
+            barrier->set_stiffness(stiffness.kappa);
+            objective_.enable_adaptive_stiffness(stiffness.kappa_max, diagonal);
           }
-        friction_iterations = settings_.friction_iterations;
       }
-    Report report;
+    const unsigned int friction_iterations = friction ? settings_.friction_iterations : 1;
+    Report             report;
     for (unsigned int f = 0; f < friction_iterations; ++f)
       {
-        if (contact_)
-          contact_->update_friction(z, contact_->candidates_at(z), step.z_start);
+        if (friction)
+          friction->lag(z, terms_.candidates_at(z), step.z_start, barrier ? barrier->stiffness() : 0.0);
         const Report r = solve_on_mesh(u, z, step.targets);
         report.iterations += r.iterations;
         report.line_search_trials += r.line_search_trials;
         report.energy = r.energy;
       }
-    potential_.disable_adaptive_stiffness();
+    objective_.disable_adaptive_stiffness();
     return report;
   }
 

@@ -17,8 +17,8 @@ namespace ritr
           violations.push_back(step + "boundary sliding violation " + std::to_string(report.sliding_violation));
       }
     const Eigen::VectorXd x = result.z.head(result.u.size());
-    if (contact_)
-      report.min_distance = contact_->minimum_distance(result.z);
+    if (collisions_)
+      report.min_distance = collisions_->minimum_distance(result.z);
     report.min_reference_measure = min_cell_measure(mesh_, result.u, false);
     report.min_deformed_jacobian = min_deformed_jacobian(mesh_, x, result.u);
     if (!(report.min_distance > 0))

@@ -14,8 +14,8 @@ namespace ritr
     , scene_(problem_->scene)
     , mesh_(problem_->mesh)
     , obstacles_(problem_->obstacles)
-    , contact_(problem_->contact.get())
-    , invariants_(problem_->mesh, problem_->contact.get())
+    , terms_(*problem_->terms)
+    , invariants_(problem_->mesh, problem_->collisions.get())
     , u_(problem_->initial_reference)
     , x_(problem_->initial_positions)
     , v_(problem_->initial_velocity)
@@ -54,8 +54,6 @@ namespace ritr
     context.z_start   = state();
     context.v_start   = v_;
     context.targets   = problem_->targets(context.time);
-    problem_->bulk->set_weights(context.cell_weights());
-    problem_->bulk->set_predictor(context.predictor());
 
     StepResult result = stepper_->step(context);
     u_                  = result.u;
@@ -77,11 +75,11 @@ namespace ritr
   Eigen::VectorXd Simulation<dim>::contact_forces() const
   {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(x_.size());
-    if (!contact_)
+    if (!terms_.has_contact())
       return f;
     Eigen::VectorXd       g = Eigen::VectorXd::Zero(x_.size() + obstacle_positions_.size());
     const Eigen::VectorXd z = state();
-    contact_->add_gradient(z, contact_->candidates_at(z), g);
+    terms_.add_energy_gradient(z, terms_.candidates_at(z), g, TermSum<dim>::Select::contact);
     const double weight = scene_.dynamic() ? scene_.time_step * scene_.time_step : 1.0;
     return -g.head(x_.size()) / weight;
   }

@@ -6,6 +6,7 @@
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/output/vtk_files.h>
+#include <ritr/terms/contact_barrier_term.h>
 #include <ritr/time/simulation.h>
 
 #include <array>
@@ -65,7 +66,7 @@ namespace ritr
                         VtuField{"contact_pressure", 1, nodal_contact_pressures(mesh_, x_, forces)}};
     const std::vector<double> material_ids(mesh_.cell_material.begin(), mesh_.cell_material.end());
     piece.cell_data = {scalar_field("strain", cell_strains(mesh_, x_, u_)),
-                       scalar_field("von_mises_stress", cell_von_mises_stresses(bulk_energy(), x_, u_)),
+                       scalar_field("von_mises_stress", cell_von_mises_stresses(materials(), x_, u_)),
                        scalar_field("material_id", material_ids),
                        scalar_field("element_quality", cell_qualities(mesh_, u_))};
 
@@ -187,14 +188,17 @@ namespace ritr
       logged_step_ = step_ + 1, logged_solve_ = 0;
     if (record.iteration == 0)
       ++logged_solve_;
-    auto &s = outputs_->newton_log;
+    auto       &s       = outputs_->newton_log;
+    const auto *barrier = terms_.template find<ContactBarrierTerm<dim>>();
     s << logged_step_ << ',' << logged_solve_ << ',' << record.iteration << ',' << std::setprecision(17)
       << record.energy << std::setprecision(6) << ',' << record.energy_change << ',' << record.predicted_decrease
       << ',' << record.step_norm << ',' << record.gradient_norm << ',' << record.ccd_bound << ',' << record.alpha
       << ',' << record.prescribed_moving << ',' << record.judged_by_gradient << ',' << record.hessian_shift << ','
       << record.exact_hessian << ','
-      << (contact_ ? contact_->stiffness() : 0.0) << ','
-      << (contact_ ? contact_->active_minimum_distance(z, contact_->candidates_at(z)) : std::numeric_limits<double>::infinity()) << '\n';
+      << (barrier ? barrier->stiffness() : 0.0) << ','
+      << (terms_.has_contact() ? terms_.collision_mesh().active_minimum_distance(z, terms_.candidates_at(z)) :
+                                 std::numeric_limits<double>::infinity())
+      << '\n';
   }
 
   template <int dim>

@@ -1,5 +1,4 @@
 #include <ritr/common/input_error.h>
-#include <ritr/mesh/simplex_rules.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/time/stepper.h>
 
@@ -87,72 +86,67 @@ namespace ritr
       std::unique_ptr<RitrSolver<dim>> solver_;
     };
 
-    template <int dim>
-    RitrSettings ritr_settings(const Problem<dim> &problem)
-    {
-      const AdaptivityScene &a = problem.scene.adaptivity;
-      RitrSettings           settings;
-      settings.hessian                 = a.hessian;
-      settings.inertia                 = a.inertia;
-      settings.projection              = a.projection;
-      settings.geometric_admissibility = a.admissibility == Admissibility::geometric || a.admissibility == Admissibility::both;
-      settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
-      settings.sliding_tolerance         = a.sliding_tolerance;
-      settings.max_outer_iterations      = a.max_iterations;
-      settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
-      settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
-      // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
-      settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);
-      return settings;
-    }
   } // namespace
+
+  template <int dim>
+  RitrSettings ritr_settings(const Problem<dim> &problem)
+  {
+    const AdaptivityScene &a = problem.scene.adaptivity;
+    RitrSettings           settings;
+    settings.hessian                 = a.hessian;
+    settings.geometric_admissibility = a.admissibility == Admissibility::geometric || a.admissibility == Admissibility::both;
+    settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
+    settings.sliding_tolerance         = a.sliding_tolerance;
+    settings.max_outer_iterations      = a.max_iterations;
+    settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
+    settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
+    // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
+    settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);
+    return settings;
+  }
+
+  template <int dim>
+  ImplicitStepSettings implicit_step_settings(const Problem<dim> &problem, const NewtonMonitor &monitor)
+  {
+    const Scene         &scene = problem.scene;
+    ImplicitStepSettings settings;
+    settings.newton.max_iterations = scene.solver.max_iterations;
+    settings.newton.projection     = scene.solver.hessian_projection;
+    // Both tolerances are relative to the bodies' size, so that a scene means the same in any
+    // unit; obstacles (a ground plane may be any size) do not count.
+    const double length       = bounding_box_diagonal<dim>(problem.initial_reference);
+    settings.newton.tolerance = scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step * length :
+                                                  scene.solver.static_tolerance * length;
+    settings.newton.monitor     = monitor;
+    settings.friction_iterations = scene.contact.friction_iterations;
+    settings.barrier_stiffness   = scene.contact.barrier_stiffness;
+    return settings;
+  }
 
   template <int dim>
   std::unique_ptr<Stepper<dim>> make_stepper(Problem<dim> &problem, const NewtonMonitor &monitor)
   {
-    const Scene &scene = problem.scene;
-    ContactPotential<dim> *contact = problem.contact.get();
-    ImplicitStepSettings step_settings;
-    step_settings.newton.max_iterations = scene.solver.max_iterations;
-    step_settings.newton.projection = scene.solver.hessian_projection;
-    // Both tolerances are relative to the bodies' size, so that a scene means the same in any
-    // unit; obstacles (a ground plane may be any size) do not count.
-    const double length = bounding_box_diagonal<dim>(problem.initial_reference);
-    step_settings.newton.tolerance = scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step * length :
-                                                       scene.solver.static_tolerance * length;
-    step_settings.friction_iterations =
-      contact && scene.contact.friction_coefficient > 0 ? scene.contact.friction_iterations : 1;
-    step_settings.barrier_stiffness = scene.contact.barrier_stiffness;
-    step_settings.dhat              = scene.contact.dhat;
-    step_settings.newton.monitor    = monitor;
-    auto implicit_step = std::make_unique<ImplicitStep<dim>>(*problem.bulk, contact, problem.kinematic, step_settings);
+    const Scene &scene         = problem.scene;
+    auto         implicit_step = std::make_unique<ImplicitStep<dim>>(*problem.terms, *problem.materials, problem.kinematic,
+                                                                     implicit_step_settings(problem, monitor));
     if (!scene.adaptivity.enabled)
       return std::make_unique<FixedMeshStepper<dim>>(std::move(implicit_step));
 
     const RitrSettings settings = ritr_settings(problem);
-    // Witherden-Vincent rules as in the paper, which integrate the transfer's piecewise
-    // integrand (kinks inside candidate cells) far better than low-order rules. A rod's cells
-    // are cheap, so there the rule is repeated on sub-cells by default.
-    const unsigned int subdivisions = scene.adaptivity.quadrature_subdivisions > 0 ?
-                                        scene.adaptivity.quadrature_subdivisions :
-                                        (dim == 1 ? 64 : 1);
-    std::unique_ptr<RitrSolver<dim>> solver;
-    try
-      {
-        solver = std::make_unique<RitrSolver<dim>>(problem.mesh, *problem.bulk, contact, *implicit_step, settings,
-                                                   composite_rule(witherden_vincent_rule<dim>(5), subdivisions));
-      }
-    catch (const std::invalid_argument &e)
-      {
-        throw InputError(scene.where("Adaptivity/enabled") + ": " + e.what());
-      }
-    if (!settings.physical_admissibility && contact)
+    if (!settings.physical_admissibility && problem.collisions)
       throw InputError(scene.where("Adaptivity/admissibility") +
                        ": without physical admissibility contact is not supported");
+    auto solver = std::make_unique<RitrSolver<dim>>(*problem.materials, *implicit_step, settings,
+                                                    problem.transfer_quadrature());
     return std::make_unique<RitrStepper<dim>>(std::move(implicit_step), std::move(solver));
   }
 
-  template std::unique_ptr<Stepper<1>> make_stepper<1>(Problem<1> &, const NewtonMonitor &);
-  template std::unique_ptr<Stepper<2>> make_stepper<2>(Problem<2> &, const NewtonMonitor &);
-  template std::unique_ptr<Stepper<3>> make_stepper<3>(Problem<3> &, const NewtonMonitor &);
+#define RITR_INSTANTIATE(dim)                                                                                          \
+  template std::unique_ptr<Stepper<dim>> make_stepper<dim>(Problem<dim> &, const NewtonMonitor &);                     \
+  template ImplicitStepSettings          implicit_step_settings<dim>(const Problem<dim> &, const NewtonMonitor &);     \
+  template RitrSettings                  ritr_settings<dim>(const Problem<dim> &);
+  RITR_INSTANTIATE(1)
+  RITR_INSTANTIATE(2)
+  RITR_INSTANTIATE(3)
+#undef RITR_INSTANTIATE
 } // namespace ritr

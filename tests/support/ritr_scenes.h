@@ -2,6 +2,8 @@
 // Runs the r-ITR verification scenes of prm/verification/ritr in-process, with the
 // adaptivity switches of each ablation set in code.
 #include <ritr/scene/parameters.h>
+#include <ritr/terms/body_force_term.h>
+#include <ritr/terms/elasticity_term.h>
 #include <ritr/time/simulation.h>
 
 #include <cstdlib>
@@ -25,10 +27,13 @@ namespace ritr::test_support
     return simulation;
   }
 
-  // Potential energy Psi - gravity work of the final state (statics: the equilibrium energy).
+  // Potential energy Psi - gravity work of the final state (statics: the equilibrium energy),
+  // the simulation's own terms as its last step left them.
   template <int dim>
   double static_energy(const Simulation<dim> &s)
   {
-    return s.bulk_energy().value(s.positions(), s.reference());
+    const TermPoint p{s.positions(), s.reference(), {}};
+    return s.terms().template find<ElasticityTerm<dim>>()->value(p) +
+           s.terms().template find<BodyForceTerm<dim>>()->value(p);
   }
 } // namespace ritr::test_support

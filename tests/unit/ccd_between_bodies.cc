@@ -1,7 +1,7 @@
 // Regression: two identical disks moving head-on so that two vertices meet exactly (a
 // perfectly symmetric vertex-vertex impact). Continuous collision detection must stop the
 // step before they touch.
-#include <ritr/contact/contact_potential.h>
+#include <ritr/contact/collision_mesh.h>
 #include <ritr/mesh/mesh_builder.h>
 
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ TEST(CcdBetweenBodies, SymmetricHeadOnVertexImpact)
   BodyDescription right  = left;
   right.center           = {0.33, 0.5};
   const auto mesh        = build_mesh<2>({left, right});
-  ContactPotential<2> contact(mesh, {}, ContactSettings{});
+  CollisionMesh<2> contact(mesh, {}, 1e-3, true);
 
   Eigen::VectorXd z = mesh.reference, dz = Eigen::VectorXd::Zero(z.size());
   for (unsigned int i = 0; i < mesh.n_nodes(); ++i)

@@ -1,11 +1,12 @@
 // The barrier and friction weights are reference boundary measures: finite-difference
 // checks of the contact energy's derivatives w.r.t. the reference positions u (gradient,
 // Hessian) and of the mixed derivative w.r.t. deformed positions and u, in 2D and 3D.
-#include <ritr/contact/contact_potential.h>
+#include <ritr/terms/contact_barrier_term.h>
+#include <ritr/terms/friction_term.h>
 
 #include <gtest/gtest.h>
 
-#include "finite_difference.h"
+#include "term_probe.h"
 #include "test_meshes.h"
 
 using namespace ritr;
@@ -24,12 +25,15 @@ namespace
     up[1]           = 1;
     std::vector<contact::RigidObstacle<dim>> obstacles{contact::make_plane<dim>(origin, up, 10.0)};
 
-    ContactSettings settings;
-    settings.dhat                 = dhat;
-    settings.friction_coefficient = 0.4;
-    settings.epsilon_v_times_h    = 1e-3;
-    ContactPotential<dim> contact(mesh, obstacles, settings);
-    contact.set_stiffness(10.0);
+    // The contact terms alone, with and without friction.
+    CollisionMesh<dim> collisions(mesh, obstacles, dhat, true);
+    TermSum<dim>       terms(mesh, &collisions), frictionless(mesh, &collisions);
+    auto              &barrier  = terms.template add<ContactBarrierTerm<dim>>(collisions);
+    auto              &friction = terms.template add<FrictionTerm<dim>>(collisions, 0.4, 1e-3);
+    barrier.set_stiffness(10.0);
+    frictionless.template add<ContactBarrierTerm<dim>>(collisions).set_stiffness(10.0);
+    const Eigen::VectorXd u = mesh.reference;
+    terms.set_reference(u);
 
     // State: deformed body (lowered a bit, sheared) and the ground's vertices.
     const Eigen::Index n_body = mesh.reference.size();
@@ -42,46 +46,29 @@ namespace
       z.template segment<dim>(n_body + v * dim) = obstacles[0].rest_vertices[v];
     Eigen::VectorXd z_start = z;
     z_start.head(n_body).array() -= 0.002;  // the step slid every body node
-    const CollisionCandidates candidates = contact.candidates_at(z);
-    contact.update_friction(z, candidates, z_start);
-    ASSERT_GT(contact.value(z, candidates), 0.0);
+    friction.lag(z, terms.candidates_at(z), z_start, barrier.stiffness());
+    const test_support::TermProbe<dim> probe{terms};
+    ASSERT_GT(probe.objective(z, u), 0.0);
     // Friction is part of what is checked: it adds energy on top of the barrier.
-    settings.friction_coefficient = 0.0;
-    ContactPotential<dim> frictionless(mesh, obstacles, settings);
-    frictionless.set_stiffness(10.0);
-    ASSERT_GT(contact.value(z, candidates), frictionless.value(z, candidates) * (1 + 1e-6));
+    frictionless.set_reference(u);
+    ASSERT_GT(probe.objective(z, u), frictionless.objective(z, frictionless.candidates_at(z)) * (1 + 1e-6));
 
-    const Eigen::VectorXd u = mesh.reference;
-    typename ContactPotential<dim>::ReferenceDerivatives d;
-    contact.reference_derivatives(z, candidates, d);
-
-    const auto value_at = [&](const Eigen::VectorXd &v) {
-      contact.set_reference(v);
-      const double e = contact.value(z, candidates);
-      contact.set_reference(u);
-      return e;
-    };
+    const auto d = probe.derivatives(z, u);
+    // The collision mesh is shared: every evaluation sets its reference through the sum.
+    const auto value_at = [&](const Eigen::VectorXd &v) { return probe.objective(z, v); };
     EXPECT_LT(test_support::relative_error(d.gu, test_support::fd_gradient(value_at, u, 1e-6)), 1e-6);
-
-    const auto gu_at = [&](const Eigen::VectorXd &v) {
-      contact.set_reference(v);
-      typename ContactPotential<dim>::ReferenceDerivatives r;
-      contact.reference_derivatives(z, candidates, r);
-      contact.set_reference(u);
-      return r.gu;
-    };
-    EXPECT_LT(test_support::relative_error(test_support::dense(d.huu, u.size(), u.size()), test_support::fd_jacobian(gu_at, u, 1e-6)),
+    const auto gu_at = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(probe.derivatives(z, v).gu); };
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.huu, u.size(), u.size()),
+                                           test_support::fd_jacobian(gu_at, u, 1e-6)),
               1e-5);
-
-    const auto gx_at = [&](const Eigen::VectorXd &v) {
-      contact.set_reference(v);
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(z.size());
-      contact.add_gradient(z, candidates, g);
-      contact.set_reference(u);
-      return g;
-    };
-    EXPECT_LT(test_support::relative_error(test_support::dense(d.hxu, z.size(), u.size()), test_support::fd_jacobian(gx_at, u, 1e-6)),
+    const auto gx_at = [&](const Eigen::VectorXd &v) { return probe.gradient(z, v); };
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.hxu, z.size(), u.size()),
+                                           test_support::fd_jacobian(gx_at, u, 1e-6)),
               1e-5);
+    // The coupling blocks' state parts are the state derivatives (H_zz projected per stencil).
+    EXPECT_LT(test_support::relative_error(d.gx, probe.gradient(z, u)), 1e-12);
+    EXPECT_LT(test_support::relative_error(test_support::dense(d.hxx, z.size(), z.size()), probe.hessian(z, u, true)),
+              1e-12);
   }
 } // namespace
 

@@ -1,17 +1,33 @@
-// Finite-difference checks of the cell terms (inertia, elasticity for every material,
+// Finite-difference checks of the cell terms (elasticity for every material, inertia,
 // gravity) w.r.t. deformed positions x and reference positions u.
-#include <ritr/elasticity/bulk_energy.h>
+#include <ritr/terms/body_force_term.h>
+#include <ritr/terms/elasticity_term.h>
+#include <ritr/terms/inertia_term.h>
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
-#include "finite_difference.h"
+#include "term_probe.h"
 #include "test_meshes.h"
 
 using namespace ritr;
 
 namespace
 {
+  // A dynamic step of h = 0.1 (potential weight 1e-2) with gravity and a predictor.
+  template <int dim>
+  StepContext<dim> dynamic_step(const SimplexMesh<dim> &mesh)
+  {
+    StepContext<dim> step;
+    step.time_step = 0.1;
+    for (int k = 0; k < dim; ++k)
+      step.gravity[k] = -9.81 * (k + 1);
+    step.u_start = mesh.reference;
+    step.z_start = test_support::deform(mesh.reference, dim, 0.02, 7);
+    step.v_start = Eigen::VectorXd::Zero(mesh.reference.size());
+    return step;
+  }
+
   template <int dim>
   void check_all_derivatives(const MaterialModel model)
   {
@@ -21,63 +37,64 @@ namespace
     material.youngs_modulus = 1e4;
     material.poisson_ratio  = 0.3;
     material.density        = 900;
-    BulkEnergy<dim> energy(mesh, {material});
-    CellEnergyWeights<dim> w;
-    w.inertia   = 1.0;
-    w.potential = 1e-2;
-    for (int k = 0; k < dim; ++k)
-      w.gravity[k] = -9.81 * (k + 1);
-    energy.set_weights(w);
-    energy.set_predictor(test_support::deform(mesh.reference, dim, 0.02, 7));
+    const CellMaterials<dim> materials(mesh, {material});
+    TermSum<dim>             terms(mesh, nullptr);
+    terms.template add<ElasticityTerm<dim>>(materials);
+    terms.template add<InertiaTerm<dim>>(materials, InertiaTerm<dim>::Predictor::nodal, InertiaForm::corrected);
+    terms.template add<BodyForceTerm<dim>>(materials);
+    terms.begin_step(dynamic_step(mesh));
+    const test_support::TermProbe<dim> probe{terms};
 
     const Eigen::VectorXd u = mesh.reference;
     const Eigen::VectorXd x = test_support::deform(u, dim, 0.02);
     const Eigen::Index    n = x.size();
-    ASSERT_TRUE(std::isfinite(energy.value(x, u)));
+    ASSERT_TRUE(std::isfinite(probe.energy(x, u)));
 
     // x: gradient and Hessian of the fast path.
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
-    energy.add_gradient(x, u, g);
-    const auto f_x = [&](const Eigen::VectorXd &y) { return energy.value(y, u); };
+    const Eigen::VectorXd g   = probe.gradient(x, u);
+    const auto            f_x = [&](const Eigen::VectorXd &y) { return probe.energy(y, u); };
     EXPECT_LT(test_support::relative_error(g, test_support::fd_gradient(f_x, x, 1e-6)), 1e-6);
-    Triplets h;
-    energy.add_hessian(x, u, false, h);
-    const auto g_x = [&](const Eigen::VectorXd &y) {
-      Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
-      energy.add_gradient(y, u, r);
-      return r;
-    };
-    EXPECT_LT(test_support::relative_error(test_support::dense(h, n, n), test_support::fd_jacobian(g_x, x, 1e-6)), 1e-6);
+    const Eigen::MatrixXd h   = probe.hessian(x, u, false);
+    const auto            g_x = [&](const Eigen::VectorXd &y) { return probe.gradient(y, u); };
+    EXPECT_LT(test_support::relative_error(h, test_support::fd_jacobian(g_x, x, 1e-6)), 1e-6);
 
     // Joint derivatives agree with the fast path and with differences in u.
-    typename BulkEnergy<dim>::JointDerivatives joint;
-    energy.joint_derivatives(x, u, ReferenceBlock::exact, joint);
+    const auto joint = probe.derivatives(x, u);
     EXPECT_LT(test_support::relative_error(joint.gx, g), 1e-10);
-    EXPECT_LT(test_support::relative_error(test_support::dense(joint.hxx, n, n), test_support::dense(h, n, n)), 1e-10);
-    const auto f_u = [&](const Eigen::VectorXd &v) { return energy.value(x, v); };
+    EXPECT_LT(test_support::relative_error(test_support::dense(joint.hxx, n, n), h), 1e-10);
+    const auto f_u = [&](const Eigen::VectorXd &v) { return probe.energy(x, v); };
     EXPECT_LT(test_support::relative_error(joint.gu, test_support::fd_gradient(f_u, u, 1e-7)), 1e-6);
-    const auto gu_of_u = [&](const Eigen::VectorXd &v) {
-      typename BulkEnergy<dim>::JointDerivatives j;
-      energy.joint_derivatives(x, v, ReferenceBlock::exact, j);
-      return j.gu;
-    };
+    const auto gu_of_u = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(probe.derivatives(x, v).gu); };
     EXPECT_LT(test_support::relative_error(test_support::dense(joint.huu, n, n), test_support::fd_jacobian(gu_of_u, u, 1e-7)),
               1e-5);
-    const auto gx_of_u = [&](const Eigen::VectorXd &v) {
-      Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
-      energy.add_gradient(x, v, r);
-      return r;
-    };
+    const auto gx_of_u = [&](const Eigen::VectorXd &v) { return probe.gradient(x, v); };
     EXPECT_LT(test_support::relative_error(test_support::dense(joint.hxu, n, n), test_support::fd_jacobian(gx_of_u, u, 1e-7)),
               1e-5);
 
+    // The following block: the second derivative along moves that carry x with u.
+    const auto following = probe.derivatives(x, u, ReferenceBlock::following);
+    const auto g_follow  = [&](const Eigen::VectorXd &v) {
+      const auto e = probe.derivatives(x + (v - u), v);
+      return Eigen::VectorXd(e.gu + e.gx);
+    };
+    EXPECT_LT(test_support::relative_error(test_support::dense(following.huu, n, n),
+                                           test_support::fd_jacobian(g_follow, u, 1e-7)),
+              1e-5);
+
     // Projected blocks are positive semi-definite even under strong compression.
-    const Eigen::VectorXd squashed = 0.3 * test_support::deform(u, dim, 0.0);
-    Triplets              hp;
-    energy.add_hessian(squashed, u, true, hp);
-    const Eigen::MatrixXd hd = test_support::dense(hp, n, n);
-    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(hd).eigenvalues().minCoeff(),
-              -1e-8 * hd.norm());
+    const Eigen::MatrixXd hd = probe.hessian(0.3 * test_support::deform(u, dim, 0.0), u, true);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(hd).eigenvalues().minCoeff(), -1e-8 * hd.norm());
+  }
+
+  // Statics: elasticity alone, with weight 1.
+  template <int dim>
+  StepContext<dim> static_step(const SimplexMesh<dim> &mesh)
+  {
+    StepContext<dim> step;
+    step.dynamic = false;
+    step.u_start = step.z_start = mesh.reference;
+    step.v_start = Eigen::VectorXd::Zero(mesh.reference.size());
+    return step;
   }
 } // namespace
 
@@ -92,12 +109,14 @@ TEST(ElasticityDerivatives, StVK3D) { check_all_derivatives<3>(MaterialModel::st
 
 TEST(ElasticityDerivatives, NeoHookeanInversionIsInfinite)
 {
-  const SimplexMesh<2> mesh = test_support::small_box_mesh<2>(1, 0.0);
-  BulkEnergy<2>        energy(mesh, {Material{}});
-  Eigen::VectorXd      x = mesh.reference;
+  const SimplexMesh<2>   mesh = test_support::small_box_mesh<2>(1, 0.0);
+  const CellMaterials<2> materials(mesh, {Material{}});
+  ElasticityTerm<2>      elasticity(materials);
+  elasticity.begin_step(static_step(mesh));
+  Eigen::VectorXd x = mesh.reference;
   for (Eigen::Index i = 0; i < x.size(); i += 2)
     x[i] = -x[i];  // mirror: every element inverts
-  EXPECT_TRUE(std::isinf(energy.value(x, mesh.reference)));
+  EXPECT_TRUE(std::isinf(elasticity.value(TermPoint{x, mesh.reference, {}})));
 }
 
 TEST(ElasticityDerivatives, RestStateHasZeroElasticForce)
@@ -107,13 +126,13 @@ TEST(ElasticityDerivatives, RestStateHasZeroElasticForce)
     {
       Material m;
       m.model = model;
-      BulkEnergy<3>        energy(mesh, {m});
-      CellEnergyWeights<3> w;
-      w.inertia = 0;
-      energy.set_weights(w);
+      const CellMaterials<3> materials(mesh, {m});
+      ElasticityTerm<3>      elasticity(materials);
+      elasticity.begin_step(static_step(mesh));
+      const TermPoint rest{mesh.reference, mesh.reference, {}};
       Eigen::VectorXd g = Eigen::VectorXd::Zero(mesh.reference.size());
-      energy.add_gradient(mesh.reference, mesh.reference, g);
+      elasticity.add_gradient(rest, g);
       EXPECT_LT(g.norm(), 1e-8);
-      EXPECT_NEAR(energy.value(mesh.reference, mesh.reference), 0.0, 1e-12);
+      EXPECT_NEAR(elasticity.value(rest), 0.0, 1e-12);
     }
 }

@@ -2,6 +2,7 @@
 // (facets, straight 3D edges, corners), the sliding violation and the reference measure
 // barrier with finite-difference checks of its gradient and Hessian.
 #include <ritr/adaptivity/reference_penalties.h>
+#include <ritr/terms/measure_barrier_term.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Self-contact: a thin strip folded into a U whose arms come within dhat of each other
 // feels the barrier between primitives of the same body, and CCD stops the arms before
 // they touch.
-#include <ritr/contact/contact_potential.h>
+#include <ritr/terms/contact_barrier_term.h>
 #include <ritr/mesh/mesh_builder.h>
 
 #include <gtest/gtest.h>
@@ -17,10 +17,10 @@ TEST(SelfContact, FoldedStripArmsRepelAndCannotCross)
   strip.upper        = {4, 0.1};
   strip.subdivisions = {80, 2};
   const auto mesh    = build_mesh<2>({strip});
-  ContactSettings settings;
-  settings.dhat = 0.02;
-  ContactPotential<2> contact(mesh, {}, settings);
-  contact.set_stiffness(1.0);
+  const double       dhat = 0.02;
+  CollisionMesh<2>   contact(mesh, {}, dhat, true);
+  ContactBarrierTerm<2> barrier(contact);
+  barrier.set_stiffness(1.0);
 
   // Fold about the top face (y = 0.1), which ends up inside: a point at thickness y lies at
   // radius r(y) = gap/2 + (0.1 - y) from the fold axis, so the arms' inner faces are `gap`
@@ -43,8 +43,8 @@ TEST(SelfContact, FoldedStripArmsRepelAndCannotCross)
     }
   const double d = contact.minimum_distance(z);
   ASSERT_GT(d, 0.0);
-  ASSERT_LT(d, settings.dhat);
-  EXPECT_GT(contact.value(z, contact.candidates_at(z)), 0.0);  // barrier active between the arms of one body
+  ASSERT_LT(d, dhat);
+  EXPECT_GT(barrier.value(TermPoint{z, mesh.reference, contact.candidates_at(z)}), 0.0);  // barrier active between the arms of one body
 
   // Pressing the upper arm down by twice the gap: CCD keeps the arms apart.
   Eigen::VectorXd dz = Eigen::VectorXd::Zero(z.size());

@@ -133,14 +133,16 @@ namespace
   template <int dim>
   Drift run_and_measure_drift(const Scene &scene, const double radius)
   {
-    Simulation<dim> s(scene);
-    BulkEnergy<dim> potential(s.mesh(), scene.materials);
-    CellEnergyWeights<dim> weights;
-    weights.inertia   = 0;
-    weights.potential = 1;
+    Simulation<dim>      s(scene);
+    // Elasticity and gravity with weight 1 (a static step's weights), the scene's gravity.
+    ElasticityTerm<dim>  elasticity(s.materials());
+    BodyForceTerm<dim>   gravity_work(s.materials());
+    StepContext<dim>     weights;
+    weights.dynamic = false;
     for (int k = 0; k < dim; ++k)
       weights.gravity[k] = scene.gravity[k];
-    potential.set_weights(weights);
+    elasticity.begin_step(weights);
+    gravity_work.begin_step(weights);
     const auto momentum = [&](const Eigen::VectorXd &masses) {
       Vec<dim> p = Vec<dim>::Zero();
       for (Eigen::Index i = 0; i < masses.size(); ++i)
@@ -151,9 +153,10 @@ namespace
       double kinetic = 0;
       for (Eigen::Index i = 0; i < masses.size(); ++i)
         kinetic += 0.5 * masses[i] * s.velocities().template segment<dim>(dim * i).squaredNorm();
-      return kinetic + potential.value(s.positions(), s.reference());
+      const TermPoint at{s.positions(), s.reference(), {}};
+      return kinetic + elasticity.value(at) + gravity_work.value(at);
     };
-    Eigen::VectorXd masses = s.bulk_energy().nodal_masses(s.reference());
+    Eigen::VectorXd masses = s.materials().nodal_masses(s.reference());
     const double    total_mass = masses.sum();
     Vec<dim>        gravity;
     for (int k = 0; k < dim; ++k)
@@ -164,7 +167,7 @@ namespace
     for (unsigned int n = 0; n < scene.n_steps(); ++n)
       {
         s.advance();
-        masses = s.bulk_energy().nodal_masses(s.reference());
+        masses = s.materials().nodal_masses(s.reference());
         const Eigen::VectorXd contact = s.contact_forces();
         Vec<dim>              impulse = total_mass * gravity;
         for (Eigen::Index i = 0; i < masses.size(); ++i)

@@ -5,14 +5,16 @@
 // node position, and its energy must lie below the uniform mesh's and above the continuous
 // Euler-Lagrange optimum (eq. 18).
 #include <ritr/adaptivity/ritr_solver.h>
-#include "ritr_setup.h"
-#include <ritr/mesh/mesh_builder.h>
+#include <ritr/time/stepper.h>
+
+#include "ritr_scenes.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 using namespace ritr;
 
@@ -91,33 +93,32 @@ namespace
 
 namespace
 {
-  // Runs one step with the given outer Hessian; checks the nodes against brute force to
-  // `tolerance` and returns the outer iterations and the wall time.
+  // Runs one step of the Fig. 9 rod (prm/ritr_rod_1d.prm) with the given outer Hessian;
+  // checks the nodes against brute force to `tolerance` and returns the outer iterations and
+  // the wall time. The problem, the inner solve's and the outer solve's settings come from
+  // the scene as the simulation builds them; the outer solve runs to epsilon r alone.
   std::pair<unsigned int, double> check_optimality(const RitrHessian hessian, const double tolerance = 1e-5)
   {
-  BodyDescription rod;
-  rod.shape        = "interval";
-  rod.lower        = {0};
-  rod.upper        = {1};
-  rod.subdivisions = {3};
-  const auto mesh  = build_mesh<1>({rod});
-  Material   material{MaterialModel::linear, E, 0.0, rho};
-  RitrSettings settings;
-  settings.epsilon_r = 1e-9;
-  settings.hessian   = hessian;
-  settings.max_outer_iterations = 1000;
-  settings.decrease_tolerance   = 0;  // epsilon_r alone decides (the trust region's other stop)
-  test_support::RitrSetup<1> setup(mesh, material, settings,
-                                   composite_rule(degree_two_rule<1>(), 4));
-  Eigen::VectorXd v(mesh.n_nodes());
-  for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
-    v[i] = 1 - 2 * mesh.reference[i];
+  Scene scene = read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/ritr_rod_1d.prm");
+  scene.end_time                  = h;
+  scene.solver.newton_tolerance   = 1e-8;  // |dx|_inf <= 1e-10
+  scene.adaptivity.hessian        = hessian;
+  scene.adaptivity.epsilon_r      = 1e-9;
+  scene.adaptivity.max_iterations = 1000;
+  const auto problem = make_problem<1>(scene);
+  ImplicitStep<1> inner(*problem->terms, *problem->materials, problem->kinematic, implicit_step_settings(*problem, {}));
+  RitrSettings settings       = ritr_settings(*problem);
+  settings.decrease_tolerance = 0;  // epsilon_r alone decides (the trust region's other stop)
+  RitrSolver<1> solver(*problem->materials, inner, settings, problem->transfer_quadrature());
   StepContext<1> step;
+  step.step      = 1;
+  step.time      = h;
   step.time_step = h;
-  step.u_start = step.z_start = step.targets = mesh.reference;
-  step.v_start = v;
+  step.u_start = step.z_start = problem->initial_reference;
+  step.v_start = problem->initial_velocity;
+  step.targets = problem->targets(h);
   const auto start  = std::chrono::steady_clock::now();
-  const auto result = setup.solver->step(step);
+  const auto result = solver.step(step);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Node order from the DoFHandler may differ from left to right: sort by position.

@@ -8,8 +8,7 @@
 //  - a cell that a step drove into the barrier gets the secant curvature of the barrier over
 //    that step, kappa_c grad w grad w^T, added to the model Hessian for the rest of the time
 //    step (add_secants / apply), so that the next step stops where the barrier balances.
-#include <ritr/mesh/simplex_mesh.h>
-#include <ritr/solver/newton.h>
+#include <ritr/terms/measure_barrier_term.h>
 
 #include <Eigen/Sparse>
 

@@ -18,7 +18,7 @@ namespace ritr
   class ReducedHessian
   {
   public:
-    // Blocks as assembled by RitrObjective::derivatives (state numbering for x, n_z entries;
+    // Blocks as assembled by TermSum::reference_derivatives (state numbering for x, n_z entries;
     // reference numbering for u, basis.rows() entries); `free_state` lists the state entries
     // that are not prescribed. Reuses `cholesky`'s symbolic analysis while the pattern holds.
     ReducedHessian(const Triplets &huu, const Triplets &hxx, const Triplets &hxu, Eigen::Index n_z,

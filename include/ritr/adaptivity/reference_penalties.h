@@ -4,9 +4,8 @@
 //    3D along a (nearly) straight boundary edge; any other boundary node is a corner and is
 //    not moved at all. The solver moves each node only within these directions, so the
 //    sliding holds exactly instead of through the paper's penalty;
-//  - non-inversion: a barrier on each reference element's measure below w_hat (eq. 21),
-//    with gradient and per-cell PSD-projected Hessian in u.
-#include <ritr/common/second_order_dual.h>
+//  - non-inversion: a barrier on each reference element's measure below w_hat (eq. 21), the
+//    term terms/measure_barrier_term.h.
 #include <ritr/mesh/simplex_mesh.h>
 
 #include <Eigen/Sparse>
@@ -36,23 +35,7 @@ namespace ritr
   template <int dim>
   std::vector<SlidingConstraint<dim>> classify_sliding(const SimplexMesh<dim> &mesh, double eps_b);
 
-  using Triplets = std::vector<Eigen::Triplet<double>>;
-
   // Largest violation |(u_i - u_i^0) . n_i| (facets) or |(u_i - u_i^0) x t_i| (edges).
   template <int dim>
   double sliding_violation(const std::vector<SlidingConstraint<dim>> &c, const Eigen::VectorXd &u);
-
-  // The measure of `cell` at reference positions u with its gradient and Hessian in the
-  // cell's dim (dim + 1) node coordinates (node a, component k at a * dim + k).
-  template <int dim>
-  SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives(const Eigen::VectorXd &u,
-                                                           const typename SimplexMesh<dim>::Cell &cell);
-
-  // sum_t kappa b(w_t(u)) with b(w) = -(w - w_hat)^2 ln(w / w_hat) for 0 < w < w_hat
-  // (+infinity for w <= 0). With `project_psd` each element's Hessian block is projected to
-  // be positive semi-definite (the truncated Hessian of the outer solve).
-  template <int dim>
-  double reference_measure_barrier(const SimplexMesh<dim> &mesh, const Eigen::VectorXd &u, double w_hat,
-                                   double kappa, Eigen::VectorXd *gradient = nullptr,
-                                   Triplets *hessian = nullptr, bool project_psd = true);
 } // namespace ritr

@@ -1,24 +1,25 @@
 #pragma once
-// One time step of optimal r-adaptive in-timestep remeshing (paper Algorithm 1): a Newton
-// method over the reference positions u of the objective R (ritr_objective.h), with the
-// physical admissibility x = argmin E(., u) solved by the fixed-mesh implicit step at every
-// trial mesh, and geometric admissibility kept by moving boundary nodes only within their
-// (approximately) planar facet or straight edge, a reference measure barrier and a step
-// filter that never lets a reference element invert.
+// One time step of optimal r-adaptive in-timestep remeshing (paper Algorithm 1): an outer
+// solve over the reference positions u of the objective R (the step's term sum with the
+// reference measure barrier), with the physical admissibility x = argmin E(., u) solved by
+// the implicit step at every trial mesh, and geometric admissibility kept by moving
+// boundary nodes only within their (approximately) planar facet or straight edge, the
+// measure barrier and a step filter that never lets a reference element invert.
 //
 // The default outer step is a trust-region Newton-CG on the exact reduced Hessian (`reduced`);
 // the switches reproduce the paper's ablations: outer Hessian truncated | full | filtered
-// (5.4, with backtracking on R), inertia corrected | uncorrected (4.3), projection in | after optimization (4.1),
-// and admissibility geometric and/or physical (4.5; without physical admissibility x and u
-// are minimised jointly).
+// (5.4, line search on R with the Newton driver), inertia corrected | uncorrected (4.3),
+// projection in | after optimization (4.1), and admissibility geometric and/or physical
+// (4.5; without physical admissibility x and u are minimised jointly).
 #include <ritr/adaptivity/outer_model.h>
 #include <ritr/adaptivity/outer_stop.h>
 #include <ritr/adaptivity/reduced_hessian.h>
 #include <ritr/adaptivity/reference_penalties.h>
-#include <ritr/adaptivity/ritr_objective.h>
-#include <ritr/scene/adaptivity_options.h>
+#include <ritr/adaptivity/ritr_options.h>
 #include <ritr/solver/sparse_cholesky.h>
 #include <ritr/step/implicit_step.h>
+#include <ritr/terms/measure_barrier_term.h>
+#include <ritr/terms/transferred_inertia_term.h>
 
 #include <tuple>
 
@@ -27,8 +28,6 @@ namespace ritr
   struct RitrSettings
   {
     RitrHessian         hessian    = RitrHessian::reduced;
-    InertiaForm         inertia    = InertiaForm::corrected;
-    PredictorProjection projection = PredictorProjection::in_optimization;
     bool                geometric_admissibility = true;
     bool                physical_admissibility  = true;
     double       epsilon_r            = 1e-6;  // stop when |du|_inf <= epsilon_r
@@ -47,11 +46,11 @@ namespace ritr
   class RitrSolver
   {
   public:
-    // `inner` solves the implicit step on a given mesh; `bulk` and `contact` are the terms it
-    // minimises (shared). `mesh` gives the connectivity and the initial reference (sliding
-    // anchors, and w_hat = a tenth of the smallest initial cell measure).
-    RitrSolver(const SimplexMesh<dim> &mesh, BulkEnergy<dim> &bulk, ContactPotential<dim> *contact,
-               ImplicitStep<dim> &inner, const RitrSettings &settings,
+    // `inner` solves the implicit step on a given mesh over the terms of `inner.terms()`,
+    // which must hold a MeasureBarrierTerm; `materials` give the mesh (connectivity, initial
+    // reference: sliding anchors) and the stiffness scale; `quadrature` integrates the
+    // velocity's L2 transfer.
+    RitrSolver(const CellMaterials<dim> &materials, ImplicitStep<dim> &inner, const RitrSettings &settings,
                const SimplexQuadrature<dim> &quadrature);
 
     struct Result
@@ -71,40 +70,37 @@ namespace ritr
     Result step(const StepContext<dim> &step);
 
   private:
-    // Newton over u with x = argmin E(., u) (physical admissibility) and backtracking.
-    void nested_solve(const Eigen::VectorXd &targets, Result &r);
-    // The same with the exact reduced Hessian: Steihaug CG in a trust region whose radius
-    // follows the ratio of R's actual to predicted change; trial states are predicted by the
-    // implicit-function response of x before the inner solve polishes them.
+    // The paper's outer Newton with a line search on R (truncated, full or filtered Hessian),
+    // or without physical admissibility the joint one over (x, u): line_search_outer.h.
+    void line_search_solve(const Eigen::VectorXd &targets, Result &r);
+    // The exact reduced Hessian: Steihaug CG in a trust region whose radius follows the ratio
+    // of R's actual to predicted change; trial states are predicted by the implicit-function
+    // response of x before the inner solve polishes them.
     void trust_region_solve(const Eigen::VectorXd &targets, Result &r);
     // R at the trial mesh r.u + step.du, with the state predicted and then solved; returns
     // (R or +infinity if the inner solve failed, u, z).
     std::tuple<double, Eigen::VectorXd, Eigen::VectorXd> trial(const typename OuterModel<dim>::Step &step,
                                                                const ReducedHessian &hessian,
                                                                const Eigen::VectorXd &targets, Result &r);
-    // Newton over (x, u) jointly (the ablation without physical admissibility).
-    void joint_solve(const Eigen::VectorXd &targets, Result &r);
-    // The iteration both share: `direction()` sets the next Newton step and returns the first
-    // fraction of it to try (none: converged); `evaluate(alpha)` returns R at that fraction
-    // (+infinity: rejected); `accept(alpha)` takes the trial that did not raise R.
-    template <typename Direction, typename Evaluate, typename Accept>
-    void descend(Result &r, const Direction &direction, const Evaluate &evaluate, const Accept &accept) const;
     // x = argmin E(., u) warm-started from z (`near_solution`: predicted to first order);
     // false if the inner solve failed.
     bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r,
                        bool near_solution = false);
-    // The outer Hessian in basis coordinates (see basis_).
-    Eigen::SparseMatrix<double> outer_hessian(const typename RitrObjective<dim>::Derivatives &d) const;
+    // R at (z, u).
+    double objective(const Eigen::VectorXd &z, const Eigen::VectorXd &u);
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
     double step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
-    // Solves H s = rhs (lower triangle, shifted if indefinite), timed into r.
-    Eigen::VectorXd solve_outer(const Eigen::SparseMatrix<double> &H, const Eigen::VectorXd &rhs, Result &r);
+    double transfer_seconds() const;
 
     const SimplexMesh<dim>              &mesh_;
-    ContactPotential<dim>               *contact_;
+    TermSum<dim>                        &terms_;
     ImplicitStep<dim>                   &inner_;
     RitrSettings                         settings_;
-    RitrObjective<dim>                   objective_;
+    MeasureBarrierTerm<dim>             &measure_barrier_;
+    const TransferredInertiaTerm<dim>   *inertia_;  // null: the predictor is not transferred
+    // pi_t(x_t, u) for the velocity update, whichever form the inertia has.
+    transfer::TransferOperator<dim>      velocity_transfer_;
+    double                               velocity_transfer_seconds_ = 0;
     std::vector<SlidingConstraint<dim>>  sliding_;
     // u moves in the span of basis_ (n_u x m): every direction for interior nodes, the
     // tangents of the sliding facet or edge for boundary nodes, none for corners and
@@ -112,9 +108,8 @@ namespace ritr
     Eigen::SparseMatrix<double>          basis_;
     std::vector<int>                     free_state_;  // non-kinematic state entries
     double                               w_hat_ = 0;
-    double                               measure_stiffness_ = 0;  // kappa_w of the current step (0: none)
     double                               youngs_modulus_ = 0;
-    SparseCholesky                       cholesky_;
+    NewtonSolver                         outer_newton_;    // the line-search outer solves
     SparseCholesky                       state_cholesky_;  // H_xx of the reduced Hessian
     SparseCholesky                       preconditioner_;  // of the trust-region CG
   };

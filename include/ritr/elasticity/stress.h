@@ -1,7 +1,7 @@
 #pragma once
 // Stress for the outputs: the Cauchy (true) stress sigma = P F^T / J of a material at a
 // deformation gradient, and its von Mises equivalent, the scalar users colour by.
-#include <ritr/elasticity/bulk_energy.h>
+#include <ritr/elasticity/cell_materials.h>
 
 #include <vector>
 
@@ -18,6 +18,6 @@ namespace ritr
 
   // Von Mises stress of every cell of the deformation u -> x.
   template <int dim>
-  std::vector<double> cell_von_mises_stresses(const BulkEnergy<dim> &bulk, const Eigen::VectorXd &x,
+  std::vector<double> cell_von_mises_stresses(const CellMaterials<dim> &materials, const Eigen::VectorXd &x,
                                               const Eigen::VectorXd &u);
 } // namespace ritr

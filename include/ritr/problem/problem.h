@@ -1,13 +1,16 @@
 #pragma once
 // The problem a scene describes, built once before the first step: the mesh and its
 // materials, the rigid obstacles and their scripted motion, the Dirichlet conditions, the
-// contact potential (only when contact is on), and the initial state. make_problem() checks
-// everything that can be checked before a step runs, so that bad input fails here with an
-// InputError naming the .prm entry, never later as a failed step.
-#include <ritr/contact/contact_potential.h>
-#include <ritr/elasticity/bulk_energy.h>
+// collision geometry (only when contact is on), the terms of every step's energy, and the
+// initial state. make_problem() checks everything that can be checked before a step runs,
+// so that bad input fails here with an InputError naming the .prm entry, never later as a
+// failed step.
+#include <ritr/common/simplex_quadrature.h>
+#include <ritr/contact/collision_mesh.h>
+#include <ritr/elasticity/cell_materials.h>
 #include <ritr/scene/expression.h>
 #include <ritr/scene/scene.h>
+#include <ritr/terms/term_sum.h>
 
 #include <array>
 #include <memory>
@@ -25,9 +28,13 @@ namespace ritr
 
     Scene                                    scene;
     SimplexMesh<dim>                         mesh;
-    std::unique_ptr<BulkEnergy<dim>>         bulk;
+    std::unique_ptr<CellMaterials<dim>>      materials;
     std::vector<contact::RigidObstacle<dim>> obstacles;
-    std::unique_ptr<ContactPotential<dim>>   contact;  // empty when contact is off
+    std::unique_ptr<CollisionMesh<dim>>      collisions;  // empty when contact is off
+    // The terms of E and R as the scene asks for them (problem_terms.cc): inertia (transferred
+    // with r-adaptivity), elasticity, body forces, contact barrier and friction, and with
+    // r-adaptivity the reference measure barrier.
+    std::unique_ptr<TermSum<dim>>            terms;
     std::vector<bool>                        kinematic;  // prescribed state entries
 
     // The initial state: reference and deformed body nodes, their velocity, and the obstacle
@@ -39,6 +46,8 @@ namespace ritr
     Eigen::VectorXd targets(double t) const;
     // The body force per unit mass at time t, load factor applied.
     std::array<double, dim> gravity(double t) const;
+    // The rule that integrates r-adaptivity's L2 transfer on candidate cells.
+    SimplexQuadrature<dim> transfer_quadrature() const;
 
   private:
     Problem() = default;
@@ -50,6 +59,7 @@ namespace ritr
     void build_obstacles();
     void build_dirichlet_conditions();
     void build_contact();
+    void build_terms();
     void check_initial_state() const;
 
     std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition

@@ -8,7 +8,7 @@
 // An expression left empty here is zero, spelled "0;0;0" (any dimension) in the file.
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
-#include <ritr/scene/adaptivity_options.h>
+#include <ritr/adaptivity/ritr_options.h>
 #include <ritr/solver/hessian_projection.h>
 
 #include <map>

@@ -1,10 +1,14 @@
 #pragma once
-// Projected Newton for one implicit step: minimise E(z) over the free entries of z while
-// prescribed ("kinematic") entries -- Dirichlet nodes and scripted obstacle vertices -- are
-// driven to their targets inside the same line search, so that continuous collision
-// detection sees their motion too. Armijo backtracking starts from the largest step that
-// CCD certifies as intersection-free; where the predicted decrease is below the energy's
-// round-off, a trial is accepted when it lowers the norm of the free gradient instead.
+// The one Newton driver: minimise an objective over the free entries of z with a line
+// search, while prescribed ("kinematic") entries -- Dirichlet nodes and scripted obstacle
+// vertices -- are driven to their targets inside the same line search, so that continuous
+// collision detection sees their motion too. Backtracking starts from the largest step the
+// objective certifies (CCD, the reference mesh's step filter) and takes the first trial
+// that passes Armijo's test; for an implicit step, where the predicted decrease is below the
+// energy's round-off, a trial is accepted when it lowers the norm of the free gradient
+// instead. The inner solve over the state and the outer line-search solves over the
+// reference mesh (adaptivity/line_search_outer.h) both run on it.
+#include <ritr/common/triplets.h>
 #include <ritr/solver/hessian_projection.h>
 #include <ritr/solver/reduced_system.h>
 #include <ritr/solver/sparse_cholesky.h>
@@ -16,8 +20,6 @@
 
 namespace ritr
 {
-  using Triplets = std::vector<Eigen::Triplet<double>>;
-
   // The objective as the solver sees it.
   class NewtonObjective
   {
@@ -30,13 +32,26 @@ namespace ritr
     // With `project`, every element and contact stencil is projected onto the positive
     // semi-definite cone; without, the exact Hessian (possibly indefinite).
     virtual void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) = 0;
-    // Largest fraction of dz that is certified intersection-free (1 without contact).
+    // Largest fraction of dz that is certified admissible (intersection-free; 1 without
+    // contact).
     virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
     {
       (void)z;
       (void)dz;
       return 1.0;
     }
+    // The Newton step as the objective trusts it (default: as solved); the outer solve over
+    // the reference mesh caps its length.
+    virtual void limit_step(const Eigen::VectorXd &z, Eigen::VectorXd &dz) const
+    {
+      (void)z;
+      (void)dz;
+    }
+    // The length of a step that the tolerance is compared with (default |dz|_inf).
+    virtual double step_norm(const Eigen::VectorXd &dz) const { return dz.lpNorm<Eigen::Infinity>(); }
+    // Called with the new iterate after every accepted step (an objective whose evaluations
+    // solve for more than z keeps the state of the accepted trial).
+    virtual void accept(const Eigen::VectorXd &z) { (void)z; }
   };
 
   // What decided one Newton iteration (a row of newton.csv with Solver/newton log).
@@ -62,6 +77,12 @@ namespace ritr
     unsigned int max_iterations = 200;
     double       armijo         = 1e-4;
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
+    // Where the predicted decrease is below the energy's round-off, judge a trial by the
+    // norm of the free gradient (an implicit step); off: Armijo's test on the value alone.
+    bool         judge_by_gradient = true;
+    // A line search that stalls while the full step's predicted decrease is below 1e-12 of
+    // the value counts as converged (round-off); off: it is reported as a failed search.
+    bool         round_off_stall_converges = true;
     HessianProjection projection = HessianProjection::always;
     unsigned int crawl_iterations = 5;  // adaptive: full, non-shrinking steps before switching
     // Adaptive: start with the exact Hessian (a start close to the solution, where projected
@@ -71,14 +92,23 @@ namespace ritr
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
   };
 
+  enum class NewtonStatus
+  {
+    converged,           // step below the tolerance
+    line_search_failed,  // no trial down to the smallest step was accepted
+    iteration_limit,
+    not_finite           // the objective is not finite at an iterate
+  };
+
   struct NewtonResult
   {
-    bool         converged          = false;
+    NewtonStatus status             = NewtonStatus::iteration_limit;
     unsigned int iterations         = 0;
     unsigned int line_search_trials = 0;
     double       energy             = 0;
     double       last_step_norm     = 0;
     std::string  failure;  // why it did not converge
+    bool         converged() const { return status == NewtonStatus::converged; }
   };
 
   class NewtonSolver

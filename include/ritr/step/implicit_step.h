@@ -1,14 +1,13 @@
 #pragma once
-// One implicit step on a given reference mesh u: minimise the incremental potential over
-// the state z = [body nodes, obstacle vertices] with projected Newton, kinematic entries
-// (Dirichlet nodes, scripted obstacles) driven to their targets, IPC's barrier stiffness
-// and lagged friction. The fixed-mesh simulation calls it once per step; r-adaptivity calls
-// it for every candidate reference mesh (the physical admissibility x = argmin E(., u)).
-#include <ritr/contact/contact_potential.h>
-#include <ritr/elasticity/bulk_energy.h>
+// One implicit step on a given reference mesh u: minimise the incremental potential of the
+// step's terms over the state z = [body nodes, obstacle vertices] with Newton, kinematic
+// entries (Dirichlet nodes, scripted obstacles) driven to their targets, IPC's barrier
+// stiffness and lagged friction. The fixed-mesh simulation calls it once per step;
+// r-adaptivity calls it for every candidate reference mesh (the physical admissibility
+// x = argmin E(., u)).
+#include <ritr/elasticity/cell_materials.h>
 #include <ritr/solver/newton.h>
-#include <ritr/step/incremental_potential.h>
-#include <ritr/step/step_context.h>
+#include <ritr/step/step_objective.h>
 
 #include <stdexcept>
 
@@ -26,15 +25,15 @@ namespace ritr
     NewtonSettings newton;
     unsigned int   friction_iterations = 1;
     double         barrier_stiffness   = 0;  // fixed kappa; 0 selects IPC's adaptive rule
-    double         dhat                = 1e-3;
   };
 
   template <int dim>
   class ImplicitStep
   {
   public:
-    // The bulk weights and predictor are set by the caller before each step.
-    ImplicitStep(BulkEnergy<dim> &bulk, ContactPotential<dim> *contact, const std::vector<bool> &kinematic,
+    // `terms` and `materials` (IPC's stiffness rule takes the mean nodal mass) are shared
+    // and must outlive the step.
+    ImplicitStep(TermSum<dim> &terms, const CellMaterials<dim> &materials, const std::vector<bool> &kinematic,
                  const ImplicitStepSettings &settings);
 
     struct Report
@@ -43,30 +42,28 @@ namespace ritr
       double       energy = 0;
     };
 
-    // First solve of a step, on its start-of-step mesh: initialises the barrier stiffness at
-    // z (IPC's rule, adapted while Newton runs) and lags friction `friction_iterations`
-    // times, with slip measured from the start-of-step state. Throws ConvergenceError.
+    // First solve of a step, on its start-of-step mesh: the terms take the step's context,
+    // the barrier stiffness is initialised at z (IPC's rule, adapted while Newton runs) and
+    // friction is lagged `friction_iterations` times, with slip measured from the
+    // start-of-step state. Throws ConvergenceError.
     Report solve_start_of_step(const StepContext<dim> &step, Eigen::VectorXd &z);
     // Later solves of the same step on another reference u (r-adaptivity's trial meshes),
     // warm-started from z: the stiffness and lagged friction stay frozen, so that the
-    // objective is one function across trials. `linear_term` (may be empty) adds l^T x.
-    // `near_solution`: z is predicted to first order (r-ITR trial meshes), so an adaptive
-    // Hessian projection starts exact.
+    // objective is one function across trials. `near_solution`: z is predicted to first
+    // order (r-ITR trial meshes), so an adaptive Hessian projection starts exact.
     Report solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
                          bool near_solution = false);
 
-    void set_linear_term(const Eigen::VectorXd &l) { potential_.set_linear_term(l); }
     const std::vector<bool> &kinematic() const { return kinematic_; }
     const NewtonSolver      &newton() const { return newton_; }
-    IncrementalPotential<dim> &potential() { return potential_; }
+    TermSum<dim>            &terms() { return terms_; }
 
   private:
-    BulkEnergy<dim>           &bulk_;
-    ContactPotential<dim>     *contact_;
-    std::vector<bool>          kinematic_;
-    ImplicitStepSettings       settings_;
-    Eigen::VectorXd            reference_;  // the mesh of the current solve
-    IncrementalPotential<dim>  potential_;
-    NewtonSolver               newton_;
+    TermSum<dim>             &terms_;
+    const CellMaterials<dim> &materials_;
+    std::vector<bool>         kinematic_;
+    ImplicitStepSettings      settings_;
+    StepObjective<dim>        objective_;
+    NewtonSolver              newton_;
   };
 } // namespace ritr

@@ -2,7 +2,7 @@
 // What must hold after every step, checked and recorded rather than asserted: contact keeps
 // a positive distance, no reference or deformed element inverts, and an r-adaptive step
 // never ends above its start-of-step objective and keeps boundary nodes on their facets.
-#include <ritr/contact/contact_potential.h>
+#include <ritr/contact/collision_mesh.h>
 #include <ritr/time/stepper.h>
 
 #include <string>
@@ -14,9 +14,9 @@ namespace ritr
   class InvariantChecker
   {
   public:
-    // `contact` may be null (no contact, no distance to check).
-    InvariantChecker(const SimplexMesh<dim> &mesh, const ContactPotential<dim> *contact)
-      : mesh_(mesh), contact_(contact)
+    // `collisions` may be null (no contact, no distance to check).
+    InvariantChecker(const SimplexMesh<dim> &mesh, const CollisionMesh<dim> *collisions)
+      : mesh_(mesh), collisions_(collisions)
     {}
 
     // Fills the report's distance and element measures for the state reached by `result`,
@@ -25,6 +25,6 @@ namespace ritr
 
   private:
     const SimplexMesh<dim>     &mesh_;
-    const ContactPotential<dim> *contact_;
+    const CollisionMesh<dim>   *collisions_;
   };
 } // namespace ritr

@@ -42,7 +42,8 @@ namespace ritr
     const std::vector<StepReport> &history() const { return history_; }
     // Invariant checks that failed so far, one line each (also in summary.json).
     const std::vector<std::string> &invariant_violations() const { return invariant_violations_; }
-    const BulkEnergy<dim>  &bulk_energy() const { return *problem_->bulk; }
+    const CellMaterials<dim> &materials() const { return *problem_->materials; }
+    const TermSum<dim>       &terms() const { return terms_; }
     const NewtonSolver     &newton_solver() const { return stepper_->newton_solver(); }
     // Physical contact force on every body node (zero without contact).
     Eigen::VectorXd contact_forces() const;
@@ -70,11 +71,11 @@ namespace ritr
     void write_summary(double total_seconds, bool complete, const std::string &failure = "") const;
 
     std::unique_ptr<Problem<dim>>              problem_;
-    // Parts of the problem the time loop and the outputs read (contact_ is null without contact).
+    // Parts of the problem the time loop and the outputs read.
     const Scene                               &scene_;
     const SimplexMesh<dim>                    &mesh_;
     const std::vector<contact::RigidObstacle<dim>> &obstacles_;
-    const ContactPotential<dim>               *contact_;
+    TermSum<dim>                              &terms_;
     std::unique_ptr<Stepper<dim>>              stepper_;
     InvariantChecker<dim>                      invariants_;
     Eigen::VectorXd                            u_, x_, v_;

@@ -6,7 +6,6 @@
 #include <ritr/problem/problem.h>
 #include <ritr/solver/newton.h>
 #include <ritr/step/implicit_step.h>
-#include <ritr/step/step_context.h>
 #include <ritr/time/step_report.h>
 
 #include <memory>
@@ -45,4 +44,11 @@ namespace ritr
   // Throws InputError for adaptivity settings the problem cannot use.
   template <int dim>
   std::unique_ptr<Stepper<dim>> make_stepper(Problem<dim> &problem, const NewtonMonitor &monitor);
+
+  // The settings make_stepper() gives the implicit step and the r-ITR solver (tests build
+  // either from them).
+  template <int dim>
+  ImplicitStepSettings implicit_step_settings(const Problem<dim> &problem, const NewtonMonitor &monitor);
+  template <int dim>
+  RitrSettings ritr_settings(const Problem<dim> &problem);
 } // namespace ritr

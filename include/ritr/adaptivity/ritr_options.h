@@ -4,6 +4,7 @@
 // these values and their names in a parameter file; the *_from() functions throw
 // std::invalid_argument for any other name.
 #include <ritr/common/enum_names.h>
+#include <ritr/terms/inertia_form.h>
 
 #include <string>
 
@@ -24,12 +25,6 @@ namespace ritr
     full,
     filtered,
     reduced
-  };
-
-  enum class InertiaForm
-  {
-    corrected,   // eq. 10
-    uncorrected  // eq. 8 (ablation)
   };
 
   enum class PredictorProjection

@@ -1,4 +1,4 @@
-#include <ritr/scene/adaptivity_options.h>
+#include <ritr/adaptivity/ritr_options.h>
 
 namespace ritr
 {

@@ -1,9 +1,8 @@
 #pragma once
 // Everything one time (or load) step starts from, fixed before any solve of the step: the
 // step's size and end time, the load, the start-of-step mesh, state and velocity, and where
-// the prescribed entries must be at the end. Solvers read it; none of them changes it.
-#include <ritr/elasticity/cell_energy.h>
-
+// the prescribed entries must be at the end. The terms read it in begin_step(); nothing
+// changes it afterwards.
 #include <Eigen/Core>
 
 #include <array>
@@ -26,16 +25,8 @@ namespace ritr
     Eigen::VectorXd x_start() const { return z_start.head(u_start.size()); }
     // Implicit Euler's predictor x_t + h v_t on the start-of-step mesh.
     Eigen::VectorXd predictor() const { return x_start() + time_step * v_start; }
-
-    // Weights of the cell terms: inertia and h^2 on the potential in dynamics, the potential
-    // alone in statics.
-    CellEnergyWeights<dim> cell_weights() const
-    {
-      CellEnergyWeights<dim> w;
-      w.inertia   = dynamic ? 1.0 : 0.0;
-      w.potential = dynamic ? time_step * time_step : 1.0;
-      w.gravity   = gravity;
-      return w;
-    }
+    // The weight of the potential energies against inertia: h^2 in dynamics (paper eq. 6),
+    // 1 in statics, where there is no inertia.
+    double potential_weight() const { return dynamic ? time_step * time_step : 1.0; }
   };
 } // namespace ritr

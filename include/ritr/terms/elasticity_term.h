@@ -1,0 +1,29 @@
+#pragma once
+// Elasticity, w sum_T |T(u)| Psi(F(x, u)) with w = h^2 in dynamics and 1 in statics (paper
+// eq. 6). Derivatives in x take a fast path: the density's derivatives in F (first Piola
+// stress, closed-form neo-Hookean Hessian) mapped by the constant P1 shape gradients; the
+// joint derivatives in (x, u) of the outer solve use second-order dual numbers on the same
+// kernel.
+#include <ritr/elasticity/cell_materials.h>
+#include <ritr/terms/energy_term.h>
+
+namespace ritr
+{
+  template <int dim>
+  class ElasticityTerm : public EnergyTerm<dim>
+  {
+  public:
+    explicit ElasticityTerm(const CellMaterials<dim> &materials) : materials_(materials) {}
+
+    void   begin_step(const StepContext<dim> &context) override { weight_ = context.potential_weight(); }
+    double value(const TermPoint &p) const override;
+    void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
+    void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;
+    void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
+                                     ReferenceDerivativeAssembly<dim> &d) const override;
+
+  private:
+    const CellMaterials<dim> &materials_;
+    double                    weight_ = 1.0;
+  };
+} // namespace ritr

@@ -1,0 +1,89 @@
+#pragma once
+// The sum of a step's terms, which feeds both solves: the incremental potential E(z; u) of
+// the terms that depend on the state (the inner solve over z at a fixed mesh) and the r-ITR
+// objective R(z, u) of all of them (the outer solve over u). It also holds the collision
+// geometry the contact terms share (none without contact): setting the reference mesh sets
+// its weights, and the candidates an evaluation looks at are built from it.
+#include <ritr/terms/energy_term.h>
+
+#include <memory>
+#include <vector>
+
+namespace ritr
+{
+  template <int dim>
+  class TermSum
+  {
+  public:
+    // `collisions` (null: no contact) must outlive the sum, as must the mesh.
+    TermSum(const SimplexMesh<dim> &mesh, CollisionMesh<dim> *collisions);
+
+    // Adds a term, built in place; terms are summed in the order they were added.
+    template <typename Term, typename... Args>
+    Term &add(Args &&...args)
+    {
+      auto  term = std::make_unique<Term>(std::forward<Args>(args)...);
+      Term &ref  = *term;
+      terms_.push_back(std::move(term));
+      return ref;
+    }
+    // The term of type Term, null if the sum has none.
+    template <typename Term>
+    Term *find() const
+    {
+      for (const auto &t : terms_)
+        if (auto *found = dynamic_cast<Term *>(t.get()))
+          return found;
+      return nullptr;
+    }
+
+    void begin_step(const StepContext<dim> &context);
+    // The reference mesh of the evaluations that follow (a no-op if it is the current one).
+    void set_reference(const Eigen::VectorXd &u);
+    const Eigen::VectorXd &reference() const { return reference_; }
+
+    bool                      has_contact() const { return collisions_ != nullptr; }
+    const CollisionMesh<dim> &collision_mesh() const { return *collisions_; }
+    // Empty without contact.
+    CollisionCandidates candidates_at(const Eigen::VectorXd &z) const;
+    CollisionCandidates candidates_along(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+
+    // Which terms a gradient sums.
+    enum class Select
+    {
+      all,
+      contact,
+      without_contact
+    };
+    // E(z; u): the terms that depend on the state; +infinity where one is inadmissible.
+    double energy(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
+    void   add_energy_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates, Eigen::VectorXd &g,
+                               Select select = Select::all) const;
+    void   add_energy_hessian(const Eigen::VectorXd &z, const CollisionCandidates &candidates, bool project,
+                              MatrixAssembly<dim> &h) const;
+    // Smallest of the terms' admissible fractions of the step dz.
+    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+
+    // R(z, u): every term.
+    double objective(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
+    // R's derivatives at (z, u): g_u and H_uu always, with `coupling` also g_z and the z-z
+    // and z-u blocks (energy_term.h).
+    struct ReferenceDerivatives
+    {
+      Eigen::VectorXd gu, gx;
+      Triplets        huu, hxx, hxu;
+    };
+    ReferenceDerivatives reference_derivatives(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                               ReferenceBlock block, bool coupling) const;
+
+    const SimplexMesh<dim> &mesh() const { return mesh_; }
+
+  private:
+    double sum(const Eigen::VectorXd &z, const CollisionCandidates &candidates, bool state_terms_only) const;
+
+    const SimplexMesh<dim>                        &mesh_;
+    CollisionMesh<dim>                            *collisions_;
+    std::vector<std::unique_ptr<EnergyTerm<dim>>> terms_;
+    Eigen::VectorXd                                reference_;
+  };
+} // namespace ritr

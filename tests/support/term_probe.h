@@ -1,0 +1,63 @@
+#pragma once
+// A term sum as the derivative tests look at it: every quantity at a state z and a reference
+// mesh u, with the collision candidates built at z, so that finite differences in either can
+// be taken by calling the same function at nearby points.
+#include <ritr/terms/term_sum.h>
+
+#include "finite_difference.h"
+
+#include <random>
+
+namespace ritr::test_support
+{
+  template <int dim>
+  struct TermProbe
+  {
+    TermSum<dim> &terms;
+
+    // R(z, u) (every term) and E(z; u) (the terms of the state).
+    double objective(const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+    {
+      terms.set_reference(u);
+      return terms.objective(z, terms.candidates_at(z));
+    }
+    double energy(const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+    {
+      terms.set_reference(u);
+      return terms.energy(z, terms.candidates_at(z));
+    }
+    // dE/dz and d2E/dz2 (dense).
+    Eigen::VectorXd gradient(const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+    {
+      terms.set_reference(u);
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(z.size());
+      terms.add_energy_gradient(z, terms.candidates_at(z), g);
+      return g;
+    }
+    Eigen::MatrixXd hessian(const Eigen::VectorXd &z, const Eigen::VectorXd &u, const bool project) const
+    {
+      terms.set_reference(u);
+      MatrixAssembly<dim> h(terms.mesh().cells);
+      terms.add_energy_hessian(z, terms.candidates_at(z), project, h);
+      return dense(h.to_triplets(), z.size(), z.size());
+    }
+    // R's derivatives in u with the coupling blocks.
+    typename TermSum<dim>::ReferenceDerivatives derivatives(const Eigen::VectorXd &z, const Eigen::VectorXd &u,
+                                                            const ReferenceBlock block = ReferenceBlock::exact) const
+    {
+      terms.set_reference(u);
+      return terms.reference_derivatives(z, terms.candidates_at(z), block, true);
+    }
+  };
+
+  // u with every entry moved by a uniform random amount in [-size, size].
+  inline Eigen::VectorXd jitter(const Eigen::VectorXd &u, const double size, const unsigned int seed)
+  {
+    std::mt19937                           rng(seed);
+    std::uniform_real_distribution<double> d(-size, size);
+    Eigen::VectorXd                        r = u;
+    for (Eigen::Index i = 0; i < r.size(); ++i)
+      r[i] += d(rng);
+    return r;
+  }
+} // namespace ritr::test_support
