@@ -360,7 +360,7 @@ namespace ritr::contact
   }
 
   template <int dim>
-  std::vector<Eigen::Triplet<double>>
+  Triplets
   barrier_hessian(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
                   const double dhat, const ConstraintWeights &weights, const bool project_psd)
   {
@@ -377,7 +377,7 @@ namespace ritr::contact
       offset[i + 1] = offset[i] + static_cast<std::size_t>(views[i].n * dim * views[i].n * dim);
 
     // Pass 2: local Hessians (projected if asked) written to disjoint ranges.
-    std::vector<Eigen::Triplet<double>> triplets(offset.back());
+    Triplets triplets(offset.back());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i)
         {
@@ -497,7 +497,7 @@ namespace ritr::contact
   template Eigen::VectorXd barrier_gradient<dim>(const std::vector<Constraint> &,              \
                                                  const Eigen::MatrixXd &, double,              \
                                                  const ConstraintWeights &);                   \
-  template std::vector<Eigen::Triplet<double>> barrier_hessian<dim>(                           \
+  template Triplets barrier_hessian<dim>(                           \
     const std::vector<Constraint> &, const Eigen::MatrixXd &, double,                          \
     const ConstraintWeights &, bool);                                                          \
   template std::vector<BarrierTerm> unweighted_barrier_terms<dim>(                             \

@@ -284,7 +284,7 @@ namespace ritr::contact
   }
 
   template <int dim>
-  std::vector<Eigen::Triplet<double>>
+  Triplets
   friction_hessian(const std::vector<FrictionConstraint<dim>> &friction, const Eigen::MatrixXd &V,
                    const Eigen::MatrixXd &V_start, const double eps, const bool project_psd)
   {
@@ -300,7 +300,7 @@ namespace ritr::contact
         for (std::size_t i = 0; i < friction.size(); ++i)
           offset[i + 1] = offset[i] + static_cast<std::size_t>(friction[i].n_vertices *
                                                                friction[i].n_vertices * dim * dim);
-        std::vector<Eigen::Triplet<double>> triplets(offset.back());
+        Triplets triplets(offset.back());
         tbb::parallel_for(
           tbb::blocked_range<std::size_t>(0, friction.size(), 256), [&](const auto &range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)
@@ -341,7 +341,7 @@ namespace ritr::contact
   template Eigen::VectorXd friction_gradient<dim>(const std::vector<FrictionConstraint<dim>> &,\
                                                   const Eigen::MatrixXd &,                     \
                                                   const Eigen::MatrixXd &, double);            \
-  template std::vector<Eigen::Triplet<double>> friction_hessian<dim>(                          \
+  template Triplets friction_hessian<dim>(                          \
     const std::vector<FrictionConstraint<dim>> &, const Eigen::MatrixXd &,                     \
     const Eigen::MatrixXd &, double, bool);
   RITR_INSTANTIATE(1)

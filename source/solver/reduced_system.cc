@@ -4,7 +4,7 @@
 
 namespace ritr
 {
-  bool ReducedSystem::same_structure(const std::vector<Eigen::Triplet<double>> &hessian,
+  bool ReducedSystem::same_structure(const Triplets &hessian,
                                      const std::vector<int>                   &free_index) const
   {
     if (hessian.size() != rows_.size() || free_index != free_index_)
@@ -15,10 +15,10 @@ namespace ritr
     return true;
   }
 
-  void ReducedSystem::build_pattern(const std::vector<Eigen::Triplet<double>> &hessian,
+  void ReducedSystem::build_pattern(const Triplets &hessian,
                                     const std::vector<int> &free_index, const int n_free)
   {
-    std::vector<Eigen::Triplet<double>> lower;
+    Triplets lower;
     lower.reserve(hessian.size());
     rows_.resize(hessian.size());
     columns_.resize(hessian.size());
@@ -51,7 +51,7 @@ namespace ritr
       }
   }
 
-  void ReducedSystem::assemble(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index,
+  void ReducedSystem::assemble(const Triplets &hessian, const std::vector<int> &free_index,
                                const int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs)
   {
     if (!same_structure(hessian, free_index))

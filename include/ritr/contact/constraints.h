@@ -9,6 +9,7 @@
 //
 // Numbering: V is n x dim, gradients have n*dim entries (entry v*dim + k) and Hessians
 // are triplets in the same numbering.
+#include <ritr/common/triplets.h>
 #include <ritr/contact/broad_phase.h>
 #include <ritr/contact/collision_surface.h>
 #include <ritr/contact/distance.h>
@@ -98,7 +99,7 @@ namespace ritr::contact
   // d2B/dV2 as triplets (duplicates to be summed). With project_psd each constraint's local
   // Hessian is projected to the PSD cone before assembly.
   template <int dim>
-  std::vector<Eigen::Triplet<double>>
+  Triplets
   barrier_hessian(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
                   double dhat, const ConstraintWeights &weights, bool project_psd = true);
 

@@ -74,7 +74,7 @@ namespace ritr::contact
   // project_psd clamps its eigenvalues at zero anyway so that round-off can never make
   // the assembled Hessian indefinite.
   template <int dim>
-  std::vector<Eigen::Triplet<double>>
+  Triplets
   friction_hessian(const std::vector<FrictionConstraint<dim>> &friction,
                    const Eigen::MatrixXd &V, const Eigen::MatrixXd &V_start,
                    double epsilon_v_times_h, bool project_psd = true);

@@ -5,6 +5,8 @@
 // pairs -- every iteration whose contact set did not change -- the matrix's pattern is
 // reused and each triplet is added straight into its slot, in the same order as
 // setFromTriplets would sum it (the same values, bit for bit).
+#include <ritr/common/triplets.h>
+
 #include <Eigen/Sparse>
 
 #include <vector>
@@ -17,14 +19,14 @@ namespace ritr
     // `free_index[i]`: position of unknown i among the free ones, -1 if prescribed.
     // `prescribed_step`: the step of the prescribed entries (others ignored); `rhs` (size
     // n_free, holding -g on entry) gets -H_fk * prescribed_step added.
-    void assemble(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index,
+    void assemble(const Triplets &hessian, const std::vector<int> &free_index,
                   int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs);
 
     const Eigen::SparseMatrix<double> &matrix() const { return matrix_; }
 
   private:
-    bool same_structure(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index) const;
-    void build_pattern(const std::vector<Eigen::Triplet<double>> &hessian, const std::vector<int> &free_index,
+    bool same_structure(const Triplets &hessian, const std::vector<int> &free_index) const;
+    void build_pattern(const Triplets &hessian, const std::vector<int> &free_index,
                        int n_free);
 
     Eigen::SparseMatrix<double> matrix_;
