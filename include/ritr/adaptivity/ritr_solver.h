@@ -25,18 +25,20 @@
 
 namespace ritr
 {
+  // Filled from the scene by ritr_settings() (time/stepper.h); the scene's AdaptivityScene is
+  // the one home of their defaults.
   struct RitrSettings
   {
-    RitrHessian         hessian    = RitrHessian::reduced;
-    bool                geometric_admissibility = true;
-    bool                physical_admissibility  = true;
-    double       epsilon_r            = 1e-6;  // stop when |du|_inf <= epsilon_r
+    RitrHessian  hessian                 = RitrHessian::reduced;
+    bool         geometric_admissibility = true;
+    bool         physical_admissibility  = true;
+    double       epsilon_r               = 0;  // stop when |du|_inf <= epsilon_r (a length)
     // Trust region: stop when the predicted decrease is below this fraction of R's decrease
     // in the step so far (0: off).
-    double       decrease_tolerance   = 1e-2;
-    unsigned int max_outer_iterations = 200;
-    double       sliding_tolerance    = 1e-6;  // eps_b
-    double       filter_threshold     = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
+    double       decrease_tolerance      = 0;
+    unsigned int max_outer_iterations    = 0;
+    double       sliding_tolerance       = 0;  // eps_b
+    double       filter_threshold        = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
     // Stiffness kappa_w of the reference measure barrier; 0 takes the contact barrier's
     // stiffness when there is contact, else (h^2) E / w_hat (see ritr_solver.cc).
     double       measure_barrier_stiffness = 0;

@@ -71,10 +71,13 @@ namespace ritr
     bool         exact_hessian      = false;  // the step solved with the exact Hessian
   };
 
+  // The tolerance and the iteration limit come from the caller (the scene's Solver section
+  // for the implicit step, its Adaptivity section for the outer solves); the rest are the
+  // algorithm's constants.
   struct NewtonSettings
   {
-    double       tolerance      = 1e-6;  // on the infinity norm of the Newton step
-    unsigned int max_iterations = 200;
+    double       tolerance      = 0;  // on the step norm (NewtonObjective::step_norm)
+    unsigned int max_iterations = 0;
     double       armijo         = 1e-4;
     double       min_step       = 1e-12;  // backtracking gives up below this fraction
     // Where the predicted decrease is below the energy's round-off, judge a trial by the

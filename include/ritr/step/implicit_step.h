@@ -20,6 +20,7 @@ namespace ritr
     using std::runtime_error::runtime_error;
   };
 
+  // Filled from the scene by implicit_step_settings() (time/stepper.h).
   struct ImplicitStepSettings
   {
     NewtonSettings newton;
