@@ -18,7 +18,7 @@ namespace ritr
   namespace
   {
     constexpr char          magic[8]   = {'R', 'I', 'T', 'R', 'C', 'K', 'P', 'T'};
-    constexpr std::uint32_t version    = 2;  // 2: steps carry the outer stop
+    constexpr std::uint32_t version    = 3;  // 2: steps carry the outer stop; 3: the barrier stiffness
     constexpr std::uint32_t byte_order = 0x01020304;
     constexpr std::size_t   header_size = sizeof(magic) + 2 * sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -151,6 +151,7 @@ namespace ritr
     payload.put(c.time);
     for (const Eigen::VectorXd *v : {&c.u, &c.x, &c.v, &c.obstacle_positions})
       payload.put(*v);
+    payload.put(c.barrier_stiffness);
     payload.put<std::uint64_t>(c.history.size());
     for (const auto &r : c.history)
       put_report(payload, r);
@@ -224,6 +225,7 @@ namespace ritr
     c.time       = r.get<double>();
     for (Eigen::VectorXd *v : {&c.u, &c.x, &c.v, &c.obstacle_positions})
       *v = r.vector();
+    c.barrier_stiffness = r.get<double>();
     c.history.resize(r.count(report_size));
     for (auto &report : c.history)
       report = get_report(r);

@@ -44,6 +44,7 @@ namespace ritr
     bool         exact    = settings.projection == HessianProjection::never || (adaptive && settings.start_exact);
     unsigned int crawling = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
+    TrustRegion  region;
 
     for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations)
       {
@@ -74,8 +75,20 @@ namespace ritr
           if (free_index[i] >= 0)
             rhs[free_index[i]] = -g[i];
         system_.assemble(h, free_index, n_free, dz, rhs);
-        const auto   start = std::chrono::steady_clock::now();
+        auto         start = std::chrono::steady_clock::now();
         const double shift = cholesky_.factorize(system_.matrix());
+        linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (settings.projection == HessianProjection::trust_region && !kinematic_pending)
+          {
+            const Outcome outcome =
+              trust_region_iteration(objective, z, g, free_index, e0, shift, settings, region, result);
+            if (outcome == Outcome::converged)
+              result.status = NewtonStatus::converged;
+            if (outcome != Outcome::accepted)
+              return result;
+            continue;
+          }
+        start                         = std::chrono::steady_clock::now();
         const Eigen::VectorXd dz_free = cholesky_.solve(rhs);
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (Eigen::Index i = 0; i < n; ++i)

@@ -1,6 +1,8 @@
 #include <ritr/step/implicit_step.h>
 #include <ritr/terms/friction_term.h>
 
+#include <limits>
+
 namespace ritr
 {
   template <int dim>
@@ -48,9 +50,20 @@ namespace ritr
             const CollisionCandidates candidates = terms_.candidates_at(z);
             Eigen::VectorXd           others     = Eigen::VectorXd::Zero(z.size());
             terms_.add_energy_gradient(z, candidates, others, TermSum<dim>::Select::without_contact);
-            const auto stiffness = contact::initial_barrier_stiffness(diagonal, terms_.collision_mesh().dhat(),
-                                                                      materials_.nodal_masses(u).mean(), others,
-                                                                      barrier->unscaled_gradient(z, candidates));
+            auto stiffness = contact::initial_barrier_stiffness(diagonal, terms_.collision_mesh().dhat(),
+                                                                materials_.nodal_masses(u).mean(), others,
+                                                                barrier->unscaled_gradient(z, candidates));
+            if (!step.dynamic)
+              {
+                // Statics has no inertia, so IPC's mass-scaled bounds mean nothing there; the
+                // cap at 100 times the lower bound shrinks with the cells (1e7 on the 18.7K
+                // punch, where gaps of 1e-9 L need ~1e8) and held gaps at 1e-12, where Newton
+                // and CCD crawl. Without it the doubling rule runs until the gaps stay open,
+                // and a load step starts as stiff as the last one ended, instead of letting
+                // the gaps it opened close again (doc/method.md, Barrier stiffness).
+                stiffness.kappa_max = std::numeric_limits<double>::infinity();
+                stiffness.kappa     = std::max(stiffness.kappa, step.barrier_stiffness);
+              }
             barrier->set_stiffness(stiffness.kappa);
             objective_.enable_adaptive_stiffness(stiffness.kappa_max, diagonal);
           }
@@ -67,6 +80,7 @@ namespace ritr
         report.energy = r.energy;
       }
     objective_.disable_adaptive_stiffness();
+    report.barrier_stiffness = barrier ? barrier->stiffness() : 0.0;
     return report;
   }
 

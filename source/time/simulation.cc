@@ -54,12 +54,14 @@ namespace ritr
     context.z_start   = state();
     context.v_start   = v_;
     context.targets   = problem_->targets(context.time);
+    context.barrier_stiffness = barrier_stiffness_;
 
     StepResult result = stepper_->step(context);
     u_                  = result.u;
     x_                  = result.z.head(u_.size());
     obstacle_positions_ = result.z.tail(obstacle_positions_.size());
     v_                  = result.v;
+    barrier_stiffness_  = result.barrier_stiffness;
     time_               = context.time;
     ++step_;
     result.report.step = context.step;

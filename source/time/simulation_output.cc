@@ -198,7 +198,7 @@ namespace ritr
       << (barrier ? barrier->stiffness() : 0.0) << ','
       << (terms_.has_contact() ? terms_.collision_mesh().active_minimum_distance(z, terms_.candidates_at(z)) :
                                  std::numeric_limits<double>::infinity())
-      << '\n';
+      << ',' << record.trust_radius << ',' << record.cg_iterations << '\n';
   }
 
   template <int dim>
@@ -226,7 +226,7 @@ namespace ritr
                      "wall_seconds,outer_stop\n";
     outputs_->newton_log << "step,solve,iteration,energy,energy_change,predicted_decrease,step_norm,"
                             "gradient_norm,ccd_bound,alpha,prescribed_moving,judged_by_gradient,hessian_shift,exact_hessian,"
-                            "barrier_stiffness,min_active_distance\n";
+                            "barrier_stiffness,min_active_distance,trust_radius,cg_iterations\n";
   }
 
   template <int dim>

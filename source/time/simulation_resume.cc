@@ -82,6 +82,7 @@ namespace ritr
     c.x                    = x_;
     c.v                    = v_;
     c.obstacle_positions   = obstacle_positions_;
+    c.barrier_stiffness    = barrier_stiffness_;
     c.history              = history_;
     c.invariant_violations = invariant_violations_;
     c.wall_seconds         = wall_seconds();
@@ -121,6 +122,7 @@ namespace ritr
     x_                    = c.x;
     v_                    = c.v;
     obstacle_positions_   = c.obstacle_positions;
+    barrier_stiffness_    = c.barrier_stiffness;
     step_                 = c.step;
     time_                 = c.time;
     history_              = c.history;

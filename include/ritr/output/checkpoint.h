@@ -22,6 +22,7 @@ namespace ritr
     double        time       = 0;
     // The state: reference and deformed body nodes, their velocity, the obstacle vertices.
     Eigen::VectorXd u, x, v, obstacle_positions;
+    double          barrier_stiffness = 0;  // the contact barrier's after the last step
     // One report per step done: log.csv is rewritten from them, summary.json adds them up.
     std::vector<StepReport>  history;
     std::vector<std::string> invariant_violations;

@@ -26,7 +26,7 @@ namespace ritr
   public:
     virtual ~NewtonObjective() = default;
     // Called once per iteration before derivatives (active contact set, barrier stiffness).
-    virtual void   begin_iteration(const Eigen::VectorXd &z) { (void)z; }
+    virtual void begin_iteration(const Eigen::VectorXd &z) { (void)z; }
     virtual double value(const Eigen::VectorXd &z) = 0;  // +infinity when inadmissible
     virtual void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) = 0;
     // With `project`, every element and contact stencil is projected onto the positive
@@ -69,6 +69,10 @@ namespace ritr
     bool         judged_by_gradient = false;  // step below the energy's round-off
     double       hessian_shift      = 0;  // multiple of the identity added to make it definite
     bool         exact_hessian      = false;  // the step solved with the exact Hessian
+    // Trust region only: the region's radius (projected-Hessian norm) the step was taken in,
+    // and the CG iterations of its last solve (0 for line-search steps).
+    double       trust_radius       = 0;
+    unsigned int cg_iterations      = 0;
   };
 
   // The tolerance and the iteration limit come from the caller (the scene's Solver section
@@ -127,7 +131,27 @@ namespace ritr
     double seconds_in_linear_solves() const { return linear_seconds_; }
 
   private:
+    // What a trust-region solve carries from one iteration to the next.
+    struct TrustRegion
+    {
+      double radius         = 0;  // in the norm of the projected Hessian; 0: not started
+      double first_gradient = 0;
+    };
+    enum class Outcome
+    {
+      accepted,
+      converged,
+      failed
+    };
+    // One iteration of HessianProjection::trust_region at z, all prescribed entries at their
+    // targets (newton_trust_region.cc). The projected Hessian is assembled in system_ and
+    // factorized (with `shift`); `g` is the full gradient at z, e0 the energy there.
+    Outcome trust_region_iteration(NewtonObjective &objective, Eigen::VectorXd &z, const Eigen::VectorXd &g,
+                                   const std::vector<int> &free_index, double e0, double shift,
+                                   const NewtonSettings &settings, TrustRegion &region, NewtonResult &result);
+
     ReducedSystem  system_;  // keeps its pattern across iterations and solves
+    ReducedSystem  exact_system_;  // the exact Hessian of a trust-region iteration
     SparseCholesky cholesky_;
     double         linear_seconds_ = 0;
   };

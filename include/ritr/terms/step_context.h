@@ -21,6 +21,9 @@ namespace ritr
     Eigen::VectorXd         z_start;    // state: [body node positions, obstacle vertices]
     Eigen::VectorXd         v_start;    // body node velocities
     Eigen::VectorXd         targets;    // prescribed state entries at the end of the step
+    // The contact barrier's stiffness the previous step ended with (0 before the first step):
+    // a step starts at least as stiff, so that the gaps the last step opened stay open.
+    double                  barrier_stiffness = 0;
 
     Eigen::VectorXd x_start() const { return z_start.head(u_start.size()); }
     // Implicit Euler's predictor x_t + h v_t on the start-of-step mesh.

@@ -80,6 +80,7 @@ namespace ritr
     InvariantChecker<dim>                      invariants_;
     Eigen::VectorXd                            u_, x_, v_;
     Eigen::VectorXd                            obstacle_positions_;  // at the current time
+    double                                     barrier_stiffness_ = 0;  // the last step's (StepContext)
     double                                     time_ = 0;
     unsigned int                               step_ = 0;
     std::vector<StepReport>                    history_;

@@ -1,0 +1,135 @@
+// The trust-region iteration of the Newton driver (HessianProjection::trust_region).
+//
+// The model is the exact Hessian H; the region and the preconditioner are the projected
+// Hessian M (every stencil clamped to its PSD part), which the line-search Newton factorizes
+// anyway. H - M lives on the few indefinite stencils only (contact at a sharp corner, a
+// compressed element), so CG on M^-1 H converges in about as many iterations as there are
+// such stencils, and in one where there are none: the step is then the projected Newton
+// step. Where H has negative curvature, Steihaug's CG follows it to the region's edge
+// instead of shifting it away, which is what the exact line-search Newton had to do with
+// shifts of up to 1e9 at gaps of 1e-12 under a punch's corners (doc/method.md).
+#include <ritr/solver/newton.h>
+#include <ritr/solver/steihaug_cg.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace ritr
+{
+  NewtonSolver::Outcome NewtonSolver::trust_region_iteration(NewtonObjective &objective, Eigen::VectorXd &z,
+                                                             const Eigen::VectorXd &g, const std::vector<int> &free_index,
+                                                             const double e0, const double shift,
+                                                             const NewtonSettings &settings, TrustRegion &region,
+                                                             NewtonResult &result)
+  {
+    const Eigen::Index n = z.size();
+    const int          n_free = system_.matrix().rows();
+    Eigen::VectorXd    g_free(n_free);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (free_index[i] >= 0)
+        g_free[free_index[i]] = g[i];
+    const double gradient_norm = g_free.norm();
+
+    // The exact Hessian on the free entries (prescribed entries do not move any more).
+    Triplets h;
+    objective.hessian(z, h, false);
+    Eigen::VectorXd unused = Eigen::VectorXd::Zero(n_free);
+    exact_system_.assemble(h, free_index, n_free, Eigen::VectorXd::Zero(n), unused);
+    const Eigen::SparseMatrix<double> &H = exact_system_.matrix(), &M = system_.matrix();
+    const LinearMap apply  = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(H.selfadjointView<Eigen::Lower>() * v); };
+    const LinearMap metric = [&](const Eigen::VectorXd &v) {
+      return Eigen::VectorXd(M.selfadjointView<Eigen::Lower>() * v + shift * v);
+    };
+    const LinearMap precondition = [&](const Eigen::VectorXd &v) {
+      const auto            start = std::chrono::steady_clock::now();
+      const Eigen::VectorXd r     = cholesky_.solve(v);
+      linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return r;
+    };
+    // The first region holds the projected Newton step: the line-search iteration's first
+    // trial, in the same norm.
+    if (region.radius == 0)
+      {
+        region.radius         = std::sqrt(std::max(g_free.dot(precondition(g_free)), 0.0));
+        region.first_gradient = gradient_norm;
+      }
+    // Inexact Newton: the CG residual relative to |g| shrinks with |g|.
+    const double forcing = std::min(0.1, std::sqrt(gradient_norm / std::max(region.first_gradient, 1e-300)));
+    const double round_off = 1e3 * std::numeric_limits<double>::epsilon() * std::abs(e0);
+    const double position_round_off = 4 * std::numeric_limits<double>::epsilon() * z.lpNorm<Eigen::Infinity>();
+    const auto   norm_in_metric = [&](const Eigen::VectorXd &p) { return std::sqrt(std::max(p.dot(metric(p)), 0.0)); };
+
+    Eigen::VectorXd dz(n), trial, trial_gradient(n);
+    for (;;)
+      {
+        ++result.line_search_trials;
+        const SteihaugResult cg = steihaug_cg(apply, g_free, region.radius, forcing * gradient_norm, 200, metric,
+                                              precondition);
+        dz.setZero();
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (free_index[i] >= 0)
+            dz[i] = cg.step[free_index[i]];
+        result.last_step_norm = objective.step_norm(dz);
+        result.energy         = e0;
+        if (cg.interior && result.last_step_norm <= settings.tolerance)
+          return Outcome::converged;
+        if (result.last_step_norm < position_round_off)
+          {
+            // The region collapsed below the positions' round-off without a decrease.
+            if (settings.round_off_stall_converges && std::abs(cg.predicted_change) <= 1e-12 * std::max(1.0, std::abs(e0)))
+              return Outcome::converged;
+            result.status  = NewtonStatus::line_search_failed;
+            result.failure = "trust region collapsed below the positions' round-off";
+            return Outcome::failed;
+          }
+        // The part of the step CCD certifies, and the model's change over that part.
+        const double    ccd_bound = std::min(1.0, objective.max_step(z, dz));
+        const double    slope = g.dot(dz), curvature = cg.step.dot(apply(cg.step));
+        const double    predicted = ccd_bound * slope + 0.5 * ccd_bound * ccd_bound * curvature;
+        const double    step_length = ccd_bound * norm_in_metric(cg.step);
+        trial               = z + ccd_bound * dz;
+        const double e      = objective.value(trial);
+        bool accepted = false, judged_by_gradient = false;
+        double       ratio  = -std::numeric_limits<double>::infinity();
+        if (std::isfinite(e))
+          {
+            if (-predicted > round_off)
+              {
+                ratio    = (e - e0) / predicted;
+                accepted = ratio >= 0.05;
+              }
+            else
+              {
+                // The energy cannot resolve the step; the gradient can (as in the line search).
+                judged_by_gradient = true;
+                trial_gradient.setZero();
+                objective.gradient(trial, trial_gradient);
+                double trial_norm = 0;
+                for (Eigen::Index i = 0; i < n; ++i)
+                  if (free_index[i] >= 0)
+                    trial_norm += trial_gradient[i] * trial_gradient[i];
+                accepted = std::sqrt(trial_norm) < gradient_norm;
+                ratio    = accepted ? 1.0 : 0.0;
+              }
+          }
+        if (ratio < 0.25)
+          region.radius = 0.25 * step_length;
+        else if (ratio > 0.75 && ccd_bound == 1.0 && !cg.interior)
+          region.radius *= 2;
+        if (!accepted)
+          continue;
+        z = trial;
+        objective.accept(z);
+        if (settings.monitor)
+          {
+            NewtonIterationRecord record{result.iterations, e0, e - e0, predicted, result.last_step_norm, gradient_norm,
+                                         ccd_bound, ccd_bound, false, judged_by_gradient, shift, true};
+            record.trust_radius  = region.radius;
+            record.cg_iterations = cg.iterations;
+            settings.monitor(record, z);
+          }
+        return Outcome::accepted;
+      }
+  }
+} // namespace ritr
