@@ -74,6 +74,17 @@ namespace ritr
   }
 
   template <int dim>
+  std::vector<std::pair<std::string, double>> TermSum<dim>::values(const Eigen::VectorXd     &z,
+                                                                   const CollisionCandidates &candidates) const
+  {
+    const TermPoint                              p{z, reference_, candidates};
+    std::vector<std::pair<std::string, double>> v;
+    for (const auto &t : terms_)
+      v.emplace_back(t->name(), t->value(p));
+    return v;
+  }
+
+  template <int dim>
   void TermSum<dim>::add_energy_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
                                          Eigen::VectorXd &g, const Select select) const
   {

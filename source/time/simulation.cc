@@ -66,6 +66,7 @@ namespace ritr
     ++step_;
     result.report.step = context.step;
     result.report.time = context.time;
+    last_step_terms_ = terms_.values(result.z, terms_.candidates_at(result.z));
     for (auto &violation : invariants_.check(result))
       invariant_violations_.push_back(std::move(violation));
     result.report.wall_seconds = seconds_since(start);

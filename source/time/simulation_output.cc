@@ -157,6 +157,17 @@ namespace ritr
         << earlier_.numeric_factorizations + newton_solver().linear_solver().n_factorizations() << ",\n"
         << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
         << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
+        << [&] {
+             // The last step's energy term by term (written once a step has run here).
+             std::string split;
+             for (const auto &[name, value] : last_step_terms_)
+               {
+                 std::ostringstream v;
+                 v << std::setprecision(17) << value;
+                 split += (split.empty() ? "" : ", ") + json_string(name) + ": " + v.str();
+               }
+             return last_step_terms_.empty() ? std::string() : "  \"final_energy_terms\": {" + split + "},\n";
+           }()
         << "  \"total_newton_iterations\": " << newton << ",\n"
         << "  \"total_outer_iterations\": " << outer << ",\n"
         << "  \"total_line_search_trials\": " << trials << ",\n"

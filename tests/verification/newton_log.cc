@@ -100,7 +100,9 @@ TEST(NewtonLog, AdaptiveProjectionFinishesTheCrawl)
   const RunResult   projected = run_ritr(scene_variant(
     "deep_punch_2d", "projected", projected_dir,
     "subsection Solver\n  set newton log = true\n  set hessian projection = always\nend\n"));
-  const RunResult adaptive = run_ritr(scene_variant("deep_punch_2d", "adaptive", adaptive_dir, log_on));
+  const RunResult adaptive = run_ritr(scene_variant(
+    "deep_punch_2d", "adaptive", adaptive_dir,
+    "subsection Solver\n  set newton log = true\n  set hessian projection = adaptive\nend\n"));
   ASSERT_EQ(projected.exit_code, 0) << projected.output;
   ASSERT_EQ(adaptive.exit_code, 0) << adaptive.output;
   const CsvTable a = read_csv(projected_dir + "/log.csv"), b = read_csv(adaptive_dir + "/log.csv");
@@ -125,4 +127,52 @@ TEST(NewtonLog, AdaptiveProjectionFinishesTheCrawl)
     }
   EXPECT_GT(exact_steps, 10u);
   EXPECT_LT(exact_steps, log.rows.size());
+}
+
+// The trust region on the exact Hessian, preconditioned by the projected one (the default):
+// on the same punch it ends no higher than the projected solve (lower where it follows
+// negative curvature past the projected solve's equilibrium under a corner), in fewer
+// iterations; every step after the punch has arrived is a trust-region step (a radius, CG
+// iterations, an accepted decrease, no shift), and the steps while it moves are projected
+// line-search steps.
+TEST(NewtonLog, TrustRegionEndsNoHigherThanProjectedNewton)
+{
+  const std::string projected_dir = "output/newton_log/punch_projected_tr", region_dir = "output/newton_log/punch_region";
+  const RunResult   projected = run_ritr(scene_variant(
+    "deep_punch_2d", "projected_tr", projected_dir,
+    "subsection Solver\n  set newton log = true\n  set hessian projection = always\nend\n"));
+  const RunResult region = run_ritr(scene_variant(
+    "deep_punch_2d", "region", region_dir,
+    "subsection Solver\n  set newton log = true\n  set hessian projection = trust-region\nend\n"));
+  ASSERT_EQ(projected.exit_code, 0) << projected.output;
+  ASSERT_EQ(region.exit_code, 0) << region.output;
+  const CsvTable a = read_csv(projected_dir + "/log.csv"), b = read_csv(region_dir + "/log.csv");
+  ASSERT_EQ(a.rows.size(), 2u);
+  ASSERT_EQ(b.rows.size(), 2u);
+  const auto energy = a.column("energy"), iterations = a.column("inner_newton_iterations");
+  for (std::size_t s = 0; s < 2; ++s)
+    {
+      EXPECT_LE(b.rows[s][energy], a.rows[s][energy] + 1e-9 * std::abs(a.rows[s][energy])) << "step " << s + 1;
+      EXPECT_LT(b.rows[s][iterations], a.rows[s][iterations]) << "step " << s + 1;
+    }
+  const CsvTable log    = read_csv(region_dir + "/newton.csv");
+  const auto     radius = log.column("trust_radius"), cg = log.column("cg_iterations"),
+             moving = log.column("prescribed_moving"), change = log.column("energy_change"),
+             exact = log.column("exact_hessian"), value = log.column("energy");
+  ASSERT_LT(cg, log.header.size());
+  unsigned int region_steps = 0;
+  for (const auto &row : log.rows)
+    if (row[moving] == 0)
+      {
+        ++region_steps;
+        EXPECT_GT(row[radius], 0.0);
+        EXPECT_GE(row[cg], 1.0);
+        EXPECT_EQ(row[exact], 1.0);
+        EXPECT_LE(row[change], 1e-12 * std::abs(row[value]));  // a decrease, up to round-off
+      }
+    else
+      {
+        EXPECT_EQ(row[radius], 0.0);  // a projected line-search step
+      }
+  EXPECT_GT(region_steps, 20u);
 }

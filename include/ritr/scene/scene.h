@@ -99,7 +99,7 @@ namespace ritr
     unsigned int max_iterations   = 200;
     unsigned int threads          = 0;  // 0: all cores
     bool         newton_log       = false;  // newton.csv: one row per Newton iteration
-    HessianProjection hessian_projection = HessianProjection::adaptive;
+    HessianProjection hessian_projection = HessianProjection::trust_region;
 
     // Subsection Solver: its entries declared with this struct's values as defaults, and
     // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.

@@ -14,6 +14,7 @@ namespace ritr
     explicit BodyForceTerm(const CellMaterials<dim> &materials) : materials_(materials) {}
 
     void   begin_step(const StepContext<dim> &context) override;
+    const char *name() const override { return "body force"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &, bool, MatrixAssembly<dim> &) const override {}  // linear in x

@@ -20,6 +20,7 @@ namespace ritr
     Eigen::VectorXd unscaled_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
 
     bool   is_contact() const override { return true; }
+    const char *name() const override { return "contact barrier"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;

@@ -16,6 +16,7 @@ namespace ritr
     explicit ElasticityTerm(const CellMaterials<dim> &materials) : materials_(materials) {}
 
     void   begin_step(const StepContext<dim> &context) override { weight_ = context.potential_weight(); }
+    const char *name() const override { return "elasticity"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;

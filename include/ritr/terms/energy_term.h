@@ -62,6 +62,9 @@ namespace ritr
   public:
     virtual ~EnergyTerm() = default;
 
+    // What the term is, for the outputs (summary.json splits the final energy by term).
+    virtual const char *name() const = 0;
+
     // A term of the reference mesh alone (the measure barrier) is a constant of the inner
     // solve over z: it belongs to R, not to E.
     virtual bool depends_on_state() const { return true; }

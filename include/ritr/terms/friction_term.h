@@ -27,6 +27,7 @@ namespace ritr
     bool   is_contact() const override { return true; }
     // The lagged normal forces follow their weights to the new mesh.
     void   set_reference(const Eigen::VectorXd &u) override;
+    const char *name() const override { return "friction"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;

@@ -27,6 +27,7 @@ namespace ritr
     InertiaTerm(const CellMaterials<dim> &materials, Predictor predictor, InertiaForm form);
 
     void   begin_step(const StepContext<dim> &context) override;
+    const char *name() const override { return "inertia"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;

@@ -26,6 +26,7 @@ namespace ritr
     double threshold() const { return w_hat_; }
 
     bool   depends_on_state() const override { return false; }
+    const char *name() const override { return "measure barrier"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &, Eigen::VectorXd &) const override {}
     void   add_hessian(const TermPoint &, bool, MatrixAssembly<dim> &) const override {}

@@ -7,6 +7,8 @@
 #include <ritr/terms/energy_term.h>
 
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace ritr
@@ -66,6 +68,9 @@ namespace ritr
 
     // R(z, u): every term.
     double objective(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
+    // Each term's value at (z, u), in the order they are summed.
+    std::vector<std::pair<std::string, double>> values(const Eigen::VectorXd &z,
+                                                       const CollisionCandidates &candidates) const;
     // R's derivatives at (z, u): g_u and H_uu always, with `coupling` also g_z and the z-z
     // and z-u blocks (energy_term.h).
     struct ReferenceDerivatives

@@ -24,6 +24,7 @@ namespace ritr
 
     void   begin_step(const StepContext<dim> &context) override;
     void   set_reference(const Eigen::VectorXd &u) override;
+    const char *name() const override { return "inertia"; }
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;
