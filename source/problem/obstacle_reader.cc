@@ -45,10 +45,10 @@ namespace ritr
               throw std::runtime_error("obstacle file '" + file + "' must contain only " +
                                        (dim == 2 ? "line" : "triangle") + " elements");
             if constexpr (dim == 2)
-              obstacle.edges.push_back({static_cast<int>(cell->vertex_index(0)), static_cast<int>(cell->vertex_index(1))});
+              obstacle.edges.push_back({{static_cast<int>(cell->vertex_index(0)), static_cast<int>(cell->vertex_index(1))}});
             else
-              obstacle.faces.push_back({static_cast<int>(cell->vertex_index(0)), static_cast<int>(cell->vertex_index(1)),
-                                        static_cast<int>(cell->vertex_index(2))});
+              obstacle.faces.push_back({{static_cast<int>(cell->vertex_index(0)), static_cast<int>(cell->vertex_index(1)),
+                                         static_cast<int>(cell->vertex_index(2))}});
           }
       }
     return obstacle;

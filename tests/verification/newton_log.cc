@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "run_ritr.h"
@@ -20,6 +21,22 @@ namespace
     const std::string summary = read_file(directory + "/summary.json");
     const std::size_t at      = summary.find("\"" + key + "\": ");
     return at == std::string::npos ? 0 : std::stoul(summary.substr(at + key.size() + 4));
+  }
+
+  // The coarse deep punch (two load steps) with Newton's log on and the given
+  // `Solver/hessian projection`, run once per projection; returns its output directory.
+  std::string punch_run(const std::string &projection)
+  {
+    static std::map<std::string, std::string> done;
+    if (const auto it = done.find(projection); it != done.end())
+      return it->second;
+    const std::string directory = "output/newton_log/punch_" + projection;
+    const RunResult   r         = run_ritr(scene_variant(
+      "deep_punch_2d", projection, directory,
+      "subsection Solver\n  set newton log = true\n  set hessian projection = " + projection + "\nend\n"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(read_csv(directory + "/log.csv").rows.size(), 2u);
+    return done[projection] = directory;
   }
 } // namespace
 
@@ -91,21 +108,13 @@ TEST(NewtonLog, ExactHessianReachesTheProjectedStates)
     EXPECT_GE(row[shift], 0.0);
 }
 
-// The default, adaptive projection: on the coarse deep punch projected Newton crawls under
-// the punch's corners (101 and 86 iterations for the two load steps); the adaptive solve
-// switches to the exact Hessian there and reaches the same equilibria in fewer iterations.
+// The adaptive projection: on the coarse deep punch projected Newton crawls under the punch's
+// corners (101 and 86 iterations for the two load steps); the adaptive solve switches to the
+// exact Hessian there and reaches the same equilibria in fewer iterations.
 TEST(NewtonLog, AdaptiveProjectionFinishesTheCrawl)
 {
-  const std::string projected_dir = "output/newton_log/punch_projected", adaptive_dir = "output/newton_log/punch_adaptive";
-  const RunResult   projected = run_ritr(scene_variant(
-    "deep_punch_2d", "projected", projected_dir,
-    "subsection Solver\n  set newton log = true\n  set hessian projection = always\nend\n"));
-  const RunResult adaptive = run_ritr(scene_variant(
-    "deep_punch_2d", "adaptive", adaptive_dir,
-    "subsection Solver\n  set newton log = true\n  set hessian projection = adaptive\nend\n"));
-  ASSERT_EQ(projected.exit_code, 0) << projected.output;
-  ASSERT_EQ(adaptive.exit_code, 0) << adaptive.output;
-  const CsvTable a = read_csv(projected_dir + "/log.csv"), b = read_csv(adaptive_dir + "/log.csv");
+  const std::string projected_dir = punch_run("always"), adaptive_dir = punch_run("adaptive");
+  const CsvTable    a = read_csv(projected_dir + "/log.csv"), b = read_csv(adaptive_dir + "/log.csv");
   ASSERT_EQ(a.rows.size(), 2u);
   ASSERT_EQ(b.rows.size(), 2u);
   const auto energy = a.column("energy"), iterations = a.column("inner_newton_iterations");
@@ -137,16 +146,8 @@ TEST(NewtonLog, AdaptiveProjectionFinishesTheCrawl)
 // line-search steps.
 TEST(NewtonLog, TrustRegionEndsNoHigherThanProjectedNewton)
 {
-  const std::string projected_dir = "output/newton_log/punch_projected_tr", region_dir = "output/newton_log/punch_region";
-  const RunResult   projected = run_ritr(scene_variant(
-    "deep_punch_2d", "projected_tr", projected_dir,
-    "subsection Solver\n  set newton log = true\n  set hessian projection = always\nend\n"));
-  const RunResult region = run_ritr(scene_variant(
-    "deep_punch_2d", "region", region_dir,
-    "subsection Solver\n  set newton log = true\n  set hessian projection = trust-region\nend\n"));
-  ASSERT_EQ(projected.exit_code, 0) << projected.output;
-  ASSERT_EQ(region.exit_code, 0) << region.output;
-  const CsvTable a = read_csv(projected_dir + "/log.csv"), b = read_csv(region_dir + "/log.csv");
+  const std::string projected_dir = punch_run("always"), region_dir = punch_run("trust-region");
+  const CsvTable    a = read_csv(projected_dir + "/log.csv"), b = read_csv(region_dir + "/log.csv");
   ASSERT_EQ(a.rows.size(), 2u);
   ASSERT_EQ(b.rows.size(), 2u);
   const auto energy = a.column("energy"), iterations = a.column("inner_newton_iterations");
