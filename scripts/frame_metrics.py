@@ -70,11 +70,19 @@ def corner_distances(directory, touch):
 
 
 def centroid_height(grid):
-    """Height of the area centroid of a 2D triangle mesh."""
-    xy = points(grid)
-    a, b, c = (xy[i] for i in vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 3).T)
-    area = 0.5 * ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
-    return float(((a + b + c)[:, 1] / 3 * area).sum() / area.sum())
+    """Height (y) of the centroid of a triangle (2D) or tetrahedron (3D) mesh, weighted by
+    cell area or volume."""
+    xyz = vtk_to_numpy(grid.GetPoints().GetData())
+    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
+    vertices_per_cell = connectivity.size // grid.GetNumberOfCells()
+    corners = [xyz[i] for i in connectivity.reshape(-1, vertices_per_cell).T]
+    edges = [c - corners[0] for c in corners[1:]]
+    if vertices_per_cell == 3:
+        measure = 0.5 * (edges[0][:, 0] * edges[1][:, 1] - edges[0][:, 1] * edges[1][:, 0])
+    else:
+        measure = numpy.einsum("ij,ij->i", edges[0], numpy.cross(edges[1], edges[2])) / 6
+    cell_height = sum(c[:, 1] for c in corners) / vertices_per_cell
+    return float((cell_height * measure).sum() / measure.sum())
 
 
 def centroid_heights(directory):

@@ -26,7 +26,7 @@ from types import SimpleNamespace
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from frame_metrics import centroid_heights  # noqa: E402
-from ladder import cost_ratios, measure, rung_overrides, run_rung  # noqa: E402
+from ladder import cost_ratios, measure, run_rung, rung_overrides, scene_name  # noqa: E402
 
 
 def outcome(run):
@@ -108,7 +108,7 @@ def main():
 
     failed = [r["name"] for r in runs if r["exit_code"] != 0 or r.get("invariant_violations")]
     problems = [] if args.quick or failed else check(args, runs)
-    result = {"scene": os.path.relpath(args.scene), "quick": args.quick, "pass_below": args.pass_below,
+    result = {"scene": scene_name(args.scene), "quick": args.quick, "pass_below": args.pass_below,
               "mu": args.mu, "baseline_rss_bytes": baseline_rss, "runs": runs,
               "headline": headline(runs, baseline_rss), "unexpected": problems}
     text = json.dumps(result, indent=1)

@@ -12,13 +12,8 @@ import json
 import os
 import sys
 
-import matplotlib
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ladder_report import cost_cells, cost_ratio_text, plot_prefix  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from ladder_report import centroid_plot, cost_cells, cost_ratio_text, plot_prefix  # noqa: E402
 
 
 def table(result):
@@ -43,26 +38,17 @@ def table(result):
 
 
 def plot(result, path):
-    fig, ax = plt.subplots(figsize=(6.5, 4.2))
     colours = dict(zip(result["mu"], ("tab:green", "tab:blue", "tab:red", "tab:purple")))
-    for r in result["runs"]:
-        if "centroid_over_time" not in r:
-            continue
-        t, y = zip(*r["centroid_over_time"])
+
+    def style(r):
         label = f"{r['name']} ({r.get('n_vertices', '?')} v)"
         if r["adaptivity"]:
-            ax.plot(t, y, color=colours.get(r["mu"]), linewidth=2.5, label=label)
-        elif r["refinements"] == 0:
-            ax.plot(t, y, color=colours.get(r["mu"]), linewidth=1.5, linestyle="--", label=label)
-        else:
-            ax.plot(t, y, color="grey", linewidth=0.8, alpha=0.4 + 0.15 * r["refinements"], label=label)
-    ax.axhline(result["pass_below"], color="black", linewidth=0.6, linestyle=":")
-    ax.set_xlabel("time")
-    ax.set_ylabel("centroid height")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+            return dict(color=colours.get(r["mu"]), linewidth=2.5, label=label)
+        if r["refinements"] == 0:
+            return dict(color=colours.get(r["mu"]), linewidth=1.5, linestyle="--", label=label)
+        return dict(color="grey", linewidth=0.8, alpha=0.4 + 0.15 * r["refinements"], label=label)
+
+    centroid_plot(result["runs"], path, style, pass_below=result["pass_below"])
 
 
 def main():

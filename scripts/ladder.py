@@ -28,8 +28,13 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from frame_metrics import corner_distances, lowest_point  # noqa: E402
+from frame_metrics import centroid_heights, corner_distances, lowest_point  # noqa: E402
 from prm_variant import entries, write_variant  # noqa: E402
+
+
+def scene_name(scene):
+    """The scene's path relative to the repository, whatever folder the runner started in."""
+    return os.path.relpath(os.path.abspath(scene), os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
 
 def measure(command, log_path):
@@ -217,10 +222,11 @@ def main():
         if args.pass_below is not None and run["exit_code"] == 0:
             run["lowest_point"] = lowest_point(run["directory"])
             run["passes"] = run["lowest_point"] < args.pass_below
+            run["centroid_over_time"] = centroid_heights(run["directory"])
         if args.corner_touch is not None and run["exit_code"] == 0:
             run["corner_distances"] = corner_distances(run["directory"], args.corner_touch)
 
-    result = {"scene": os.path.relpath(args.scene), "quick": args.quick, "overrides": common,
+    result = {"scene": scene_name(args.scene), "quick": args.quick, "overrides": common,
               "pass_below": args.pass_below, "corner_touch": args.corner_touch,
               "baseline_rss_bytes": baseline_rss, "reference": reference["name"], "runs": runs,
               "accuracy": args.accuracy,

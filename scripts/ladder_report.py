@@ -7,7 +7,9 @@ Prints the table to stdout and writes the plots beside the JSON (or into DIR): f
 ranked by Hausdorff distance, NAME_hausdorff.png (distance to the reference rung over time, one
 line per run) and NAME_cost.png (mean distance against wall time and against vertices); for one
 ranked by energy (statics), NAME_energy.png (final energy against vertices, wall time and peak
-memory: the paper's Fig. 16). r-ITR is marked in each.
+memory: the paper's Fig. 16). r-ITR is marked in each. A ladder with a gap to pass
+(`--pass-below`) over more than two frames also gets NAME_centroid.png, the height of each
+run's area centroid over time.
 """
 import argparse
 import json
@@ -114,7 +116,34 @@ def energy_plot(result, prefix):
                 "final (equilibrium) energy", log_y=False)
 
 
+def ladder_line_style(run):
+    """r-ITR in bold green, fixed rungs thin."""
+    label = f"{run['name']} ({run.get('n_vertices', '?')} v)"
+    return dict(color="tab:green", linewidth=2.5, label=label) if is_ritr(run) else dict(linewidth=1, label=label)
+
+
+def centroid_plot(runs, path, line_style=ladder_line_style, pass_below=None):
+    """Each run's centroid height over time; a centroid height a run must pass marked dotted."""
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    for r in runs:
+        if "centroid_over_time" in r:
+            t, y = zip(*r["centroid_over_time"])
+            ax.plot(t, y, **line_style(r))
+    if pass_below is not None:
+        ax.axhline(pass_below, color="black", linewidth=0.6, linestyle=":")
+    ax.set_xlabel("time")
+    ax.set_ylabel("centroid height")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def plots(result, prefix):
+    if result.get("pass_below") is not None and any(len(r.get("centroid_over_time", [])) > 2
+                                                     for r in result["runs"]):
+        # The ladder's pass test is on the lowest point, not the centroid: no line to pass here.
+        centroid_plot(result["runs"], prefix + "_centroid.png")
     if result.get("accuracy") == "energy":
         energy_plot(result, prefix)
         return
@@ -124,8 +153,7 @@ def plots(result, prefix):
         # The first frame is the shared initial state (distance zero up to round-off).
         frames = [(t, d) for t, d in r["hausdorff_over_time"] if t > 0]
         t, d = zip(*frames) if frames else ([], [])
-        style = dict(color="tab:green", linewidth=2.5) if is_ritr(r) else dict(linewidth=1)
-        ax.plot(t, d, label=f"{r['name']} ({r.get('n_vertices', '?')} v)", **style)
+        ax.plot(t, d, **ladder_line_style(r))
     ax.set_xlabel("time")
     ax.set_ylabel(f"Hausdorff distance to {result['reference']}")
     ax.set_yscale("log")
