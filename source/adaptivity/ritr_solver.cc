@@ -139,9 +139,7 @@ namespace ritr
     // term, sets the contact stiffness and lags friction for the whole step.
     {
       ScopedTimer timer(r.inner_seconds);
-      const auto start = inner_.solve_start_of_step(step, r.z);
-      r.inner_iterations += start.iterations;
-      r.barrier_stiffness = start.barrier_stiffness;
+      r.inner_iterations += inner_.solve_start_of_step(step, r.z).iterations;
     }
     // The measure barrier's stiffness matches the contact barrier's (paper 5.3.2); without
     // contact it is the elastic stiffness per unit measure at the threshold w_hat.

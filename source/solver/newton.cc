@@ -4,26 +4,14 @@
 #include <cmath>
 #include <limits>
 
+#include "free_entries.h"
+
 namespace ritr
 {
-  namespace
-  {
-    // Round-off of an energy value: it is a sum of many terms of about its own size, each
-    // rounded to machine precision, so differences below ~1000 ulps carry no information.
-    double energy_round_off(const double energy)
-    {
-      return 1e3 * std::numeric_limits<double>::epsilon() * std::abs(energy);
-    }
-
-    double free_norm(const Eigen::VectorXd &v, const std::vector<int> &free_index)
-    {
-      double sum = 0;
-      for (Eigen::Index i = 0; i < v.size(); ++i)
-        if (free_index[i] >= 0)
-          sum += v[i] * v[i];
-      return std::sqrt(sum);
-    }
-  } // namespace
+  using newton_detail::energy_round_off;
+  using newton_detail::free_norm;
+  using newton_detail::gather_free;
+  using newton_detail::scatter_free;
 
   NewtonResult NewtonSolver::minimize(NewtonObjective &objective, Eigen::VectorXd &z,
                                       const std::vector<bool> &kinematic,
@@ -70,10 +58,7 @@ namespace ritr
             }
         h.clear();
         objective.hessian(z, h, !exact);
-        Eigen::VectorXd rhs(n_free);
-        for (Eigen::Index i = 0; i < n; ++i)
-          if (free_index[i] >= 0)
-            rhs[free_index[i]] = -g[i];
+        Eigen::VectorXd rhs = -gather_free(g, free_index, n_free);
         system_.assemble(h, free_index, n_free, dz, rhs);
         auto         start = std::chrono::steady_clock::now();
         const double shift = cholesky_.factorize(system_.matrix());
@@ -91,9 +76,7 @@ namespace ritr
         start                         = std::chrono::steady_clock::now();
         const Eigen::VectorXd dz_free = cholesky_.solve(rhs);
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        for (Eigen::Index i = 0; i < n; ++i)
-          if (free_index[i] >= 0)
-            dz[i] = dz_free[free_index[i]];
+        scatter_free(dz_free, free_index, dz);
 
         objective.limit_step(z, dz);
         result.last_step_norm = objective.step_norm(dz);

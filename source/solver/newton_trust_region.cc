@@ -15,24 +15,29 @@
 #include <cmath>
 #include <limits>
 
+#include "free_entries.h"
+
 namespace ritr
 {
+  using newton_detail::energy_round_off;
+  using newton_detail::free_norm;
+  using newton_detail::gather_free;
+  using newton_detail::scatter_free;
+
   NewtonSolver::Outcome NewtonSolver::trust_region_iteration(NewtonObjective &objective, Eigen::VectorXd &z,
                                                              const Eigen::VectorXd &g, const std::vector<int> &free_index,
                                                              const double e0, const double shift,
                                                              const NewtonSettings &settings, TrustRegion &region,
                                                              NewtonResult &result)
   {
-    const Eigen::Index n = z.size();
-    const int          n_free = system_.matrix().rows();
-    Eigen::VectorXd    g_free(n_free);
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (free_index[i] >= 0)
-        g_free[free_index[i]] = g[i];
-    const double gradient_norm = g_free.norm();
+    const Eigen::Index    n      = z.size();
+    const int             n_free = system_.matrix().rows();
+    const Eigen::VectorXd g_free = gather_free(g, free_index, n_free);
+    const double          gradient_norm = g_free.norm();
 
     // The exact Hessian on the free entries (prescribed entries do not move any more).
-    Triplets h;
+    Triplets &h = exact_triplets_;
+    h.clear();
     objective.hessian(z, h, false);
     Eigen::VectorXd unused = Eigen::VectorXd::Zero(n_free);
     exact_system_.assemble(h, free_index, n_free, Eigen::VectorXd::Zero(n), unused);
@@ -59,7 +64,7 @@ namespace ritr
     // back-substitution each, so the cap is tight: at 0.1 the solves from r-ITR's predicted
     // states took one step more (2,886 against 1,770 inner iterations on the ball on spikes).
     const double forcing = std::min(1e-3, std::sqrt(gradient_norm / std::max(region.first_gradient, 1e-300)));
-    const double round_off = 1e3 * std::numeric_limits<double>::epsilon() * std::abs(e0);
+    const double round_off = energy_round_off(e0);
     const double position_round_off = 4 * std::numeric_limits<double>::epsilon() * z.lpNorm<Eigen::Infinity>();
     const auto   norm_in_metric = [&](const Eigen::VectorXd &p) { return std::sqrt(std::max(p.dot(metric(p)), 0.0)); };
 
@@ -70,9 +75,7 @@ namespace ritr
         const SteihaugResult cg = steihaug_cg(apply, g_free, region.radius, forcing * gradient_norm, 200, metric,
                                               precondition);
         dz.setZero();
-        for (Eigen::Index i = 0; i < n; ++i)
-          if (free_index[i] >= 0)
-            dz[i] = cg.step[free_index[i]];
+        scatter_free(cg.step, free_index, dz);
         result.last_step_norm = objective.step_norm(dz);
         result.energy         = e0;
         if (cg.interior && result.last_step_norm <= settings.tolerance)
@@ -108,11 +111,7 @@ namespace ritr
                 judged_by_gradient = true;
                 trial_gradient.setZero();
                 objective.gradient(trial, trial_gradient);
-                double trial_norm = 0;
-                for (Eigen::Index i = 0; i < n; ++i)
-                  if (free_index[i] >= 0)
-                    trial_norm += trial_gradient[i] * trial_gradient[i];
-                accepted = std::sqrt(trial_norm) < gradient_norm;
+                accepted = free_norm(trial_gradient, free_index) < gradient_norm;
                 ratio    = accepted ? 1.0 : 0.0;
               }
           }

@@ -80,7 +80,6 @@ namespace ritr
         report.energy = r.energy;
       }
     objective_.disable_adaptive_stiffness();
-    report.barrier_stiffness = barrier ? barrier->stiffness() : 0.0;
     return report;
   }
 

@@ -1,4 +1,5 @@
 #include <ritr/common/wall_clock.h>
+#include <ritr/terms/contact_barrier_term.h>
 #include <ritr/time/simulation.h>
 
 #include <chrono>
@@ -61,12 +62,13 @@ namespace ritr
     x_                  = result.z.head(u_.size());
     obstacle_positions_ = result.z.tail(obstacle_positions_.size());
     v_                  = result.v;
-    barrier_stiffness_  = result.barrier_stiffness;
     time_               = context.time;
     ++step_;
     result.report.step = context.step;
     result.report.time = context.time;
-    last_step_terms_ = terms_.values(result.z, terms_.candidates_at(result.z));
+    // The stiffness the step's first solve settled on (later solves of the step keep it).
+    if (const auto *barrier = terms_.template find<ContactBarrierTerm<dim>>())
+      barrier_stiffness_ = barrier->stiffness();
     for (auto &violation : invariants_.check(result))
       invariant_violations_.push_back(std::move(violation));
     result.report.wall_seconds = seconds_since(start);

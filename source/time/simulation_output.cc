@@ -158,7 +158,7 @@ namespace ritr
         << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
         << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
         << [&] {
-             // The last step's energy term by term (written once a step has run here).
+             // The last step's energy term by term (complete runs; see run_steps).
              std::string split;
              for (const auto &[name, value] : last_step_terms_)
                {
@@ -307,6 +307,13 @@ namespace ritr
         flush_logs();  // newton.csv then shows the iterations of the failed step
         write_summary(wall_seconds(), false, e.what());
         throw;
+      }
+    // The final energy term by term, once, while the terms still hold the last step's
+    // context (they hold none when this process ran no step).
+    if (step_ > first_step)
+      {
+        const Eigen::VectorXd z = state();
+        last_step_terms_        = terms_.values(z, terms_.candidates_at(z));
       }
     write_summary(wall_seconds(), true);
   }

@@ -29,7 +29,6 @@ namespace ritr
             result.report.newton_iterations  = r.iterations;
             result.report.line_search_trials = r.line_search_trials;
             result.report.energy             = r.energy;
-            result.barrier_stiffness         = r.barrier_stiffness;
           }
         catch (const ConvergenceError &e)
           {
@@ -79,7 +78,6 @@ namespace ritr
         result.report.inner_seconds       = r.inner_seconds;
         result.report.transfer_seconds    = r.transfer_seconds;
         result.report.outer_solve_seconds = r.outer_solve_seconds;
-        result.barrier_stiffness          = r.barrier_stiffness;
         return result;
       }
 

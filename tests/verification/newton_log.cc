@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <map>
+#include <regex>
 #include <string>
 
 #include "run_ritr.h"
@@ -39,6 +40,28 @@ namespace
     return done[projection] = directory;
   }
 } // namespace
+
+// summary.json splits the final energy by term, and the terms add up to it (statics: the
+// potential has no inertia, and without r-adaptivity no measure barrier).
+TEST(NewtonLog, SummarySplitsTheFinalEnergyByTerm)
+{
+  const std::string summary = read_file(punch_run("trust-region") + "/summary.json");
+  std::smatch       total, split;
+  ASSERT_TRUE(std::regex_search(summary, total, std::regex("\"final_energy\": ([^,\n]*)")));
+  ASSERT_TRUE(std::regex_search(summary, split, std::regex("\"final_energy_terms\": \\{([^}]*)\\}")));
+  std::map<std::string, double> terms;
+  const std::string             entries = split[1];
+  const std::regex              entry("\"([a-z ]+)\": ([^,]+)");
+  for (auto it = std::sregex_iterator(entries.begin(), entries.end(), entry); it != std::sregex_iterator(); ++it)
+    terms[(*it)[1]] = std::stod((*it)[2]);
+  ASSERT_EQ(terms.size(), 3u) << split[1];
+  EXPECT_GT(terms.at("elasticity"), 0.0);
+  EXPECT_GT(terms.at("contact barrier"), 0.0);  // the punch presses on the block
+  double sum = 0;
+  for (const auto &[name, value] : terms)
+    sum += value;
+  EXPECT_NEAR(sum, std::stod(total[1]), 1e-12 * std::abs(sum));
+}
 
 TEST(NewtonLog, OneRowPerIterationOnTheFastBar)
 {

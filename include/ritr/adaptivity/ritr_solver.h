@@ -62,7 +62,6 @@ namespace ritr
       // R at (argmin E(., u_t), u_t): the step never ends above it.
       double          initial_objective = 0;
       double          sliding_violation = 0;
-      double          barrier_stiffness = 0;  // the contact barrier's, set by the first solve
       OuterStop       stop              = OuterStop::iteration_limit;
       unsigned int    outer_iterations = 0, inner_iterations = 0, line_search_trials = 0;
       double          inner_seconds = 0, transfer_seconds = 0, outer_solve_seconds = 0;

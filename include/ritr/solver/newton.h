@@ -152,6 +152,7 @@ namespace ritr
 
     ReducedSystem  system_;  // keeps its pattern across iterations and solves
     ReducedSystem  exact_system_;  // the exact Hessian of a trust-region iteration
+    Triplets       exact_triplets_;  // its entries, kept so that their storage is reused
     SparseCholesky cholesky_;
     double         linear_seconds_ = 0;
   };

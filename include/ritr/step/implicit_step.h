@@ -41,7 +41,6 @@ namespace ritr
     {
       unsigned int iterations = 0, line_search_trials = 0;
       double       energy = 0;
-      double       barrier_stiffness = 0;  // the contact barrier's after the solve (0: no contact)
     };
 
     // First solve of a step, on its start-of-step mesh: the terms take the step's context,

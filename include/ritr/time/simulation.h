@@ -85,7 +85,7 @@ namespace ritr
     unsigned int                               step_ = 0;
     std::vector<StepReport>                    history_;
     std::vector<std::string>                   invariant_violations_;
-    std::vector<std::pair<std::string, double>> last_step_terms_;  // summary.json's final_energy_terms
+    std::vector<std::pair<std::string, double>> last_step_terms_;  // summary.json's final_energy_terms, at the end
     std::unique_ptr<RunOutputs>                outputs_;
     unsigned int                               logged_step_ = 0, logged_solve_ = 0;
     std::uint64_t                              scene_hash_ = 0;  // scene_fingerprint()

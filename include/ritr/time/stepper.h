@@ -22,7 +22,6 @@ namespace ritr
     Eigen::VectorXd z;  // state: [body node positions, obstacle vertices]
     Eigen::VectorXd v;  // body node velocities
     StepReport      report;  // the solver's part; the mesh invariants are filled in later
-    double          barrier_stiffness = 0;  // the contact barrier's at the end of the step
   };
 
   template <int dim>
