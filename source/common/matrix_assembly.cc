@@ -15,6 +15,15 @@ namespace ritr
   }
 
   template <int dim>
+  void MatrixAssembly<dim>::append_block(const Cell &cell, const double *block, Eigen::Triplet<double> *out)
+  {
+    constexpr int n = cell_dofs;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        *out++ = Eigen::Triplet<double>(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim, block[j * n + i]);
+  }
+
+  template <int dim>
   void MatrixAssembly<dim>::append_to(Triplets &out) const
   {
     constexpr int     n      = cell_dofs;
@@ -24,15 +33,7 @@ namespace ritr
     // Every cell writes its own slice of the list, so the scatter runs in parallel.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 256), [&](const tbb::blocked_range<std::size_t> &range) {
       for (std::size_t c = range.begin(); c != range.end(); ++c)
-        {
-          const Cell   &cell  = (*cells_)[c];
-          const double *block = values_.data() + c * n * n;
-          auto         *entry = out.data() + offset + c * n * n;
-          for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j)
-              *entry++ = Eigen::Triplet<double>(cell[i / dim] * dim + i % dim, cell[j / dim] * dim + j % dim,
-                                                block[j * n + i]);
-        }
+        append_block((*cells_)[c], values_.data() + c * n * n, out.data() + offset + c * n * n);
     });
     out.insert(out.end(), triplets_.begin(), triplets_.end());
   }

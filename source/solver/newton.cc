@@ -56,14 +56,28 @@ namespace ritr
               dz[i] = targets[i] - z[i];
               kinematic_pending |= dz[i] != 0.0;
             }
-        h.clear();
-        objective.hessian(z, h, !exact);
-        Eigen::VectorXd rhs = -gather_free(g, free_index, n_free);
-        system_.assemble(h, free_index, n_free, dz, rhs);
+        Eigen::VectorXd rhs          = -gather_free(g, free_index, n_free);
+        const bool      trust_region = settings.projection == HessianProjection::trust_region && !kinematic_pending;
+        if (trust_region)
+          {
+            // The model's exact Hessian and the projected one it is preconditioned with, from
+            // one evaluation of the stencils.
+            exact_triplets_.clear();
+            projection_triplets_.clear();
+            objective.hessian_and_projection(z, exact_triplets_, projection_triplets_);
+            exact_system_.assemble(exact_triplets_, free_index, n_free, dz, rhs);
+            system_.assemble_sum(exact_system_, projection_triplets_);
+          }
+        else
+          {
+            h.clear();
+            objective.hessian(z, h, !exact);
+            system_.assemble(h, free_index, n_free, dz, rhs);
+          }
         auto         start = std::chrono::steady_clock::now();
         const double shift = cholesky_.factorize(system_.matrix());
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (settings.projection == HessianProjection::trust_region && !kinematic_pending)
+        if (trust_region)
           {
             const Outcome outcome =
               trust_region_iteration(objective, z, g, free_index, e0, shift, settings, region, result);

@@ -35,12 +35,6 @@ namespace ritr
     const Eigen::VectorXd g_free = gather_free(g, free_index, n_free);
     const double          gradient_norm = g_free.norm();
 
-    // The exact Hessian on the free entries (prescribed entries do not move any more).
-    Triplets &h = exact_triplets_;
-    h.clear();
-    objective.hessian(z, h, false);
-    Eigen::VectorXd unused = Eigen::VectorXd::Zero(n_free);
-    exact_system_.assemble(h, free_index, n_free, Eigen::VectorXd::Zero(n), unused);
     const Eigen::SparseMatrix<double> &H = exact_system_.matrix(), &M = system_.matrix();
     const LinearMap apply  = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(H.selfadjointView<Eigen::Lower>() * v); };
     const LinearMap metric = [&](const Eigen::VectorXd &v) {

@@ -1,6 +1,7 @@
 #include <ritr/solver/reduced_system.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace ritr
 {
@@ -65,6 +66,26 @@ namespace ritr
           values[s] += hessian[i].value();
         else if (s <= -2)
           rhs[-2 - s] -= hessian[i].value() * prescribed_step[columns_[i]];
+      }
+  }
+
+  void ReducedSystem::assemble_sum(const ReducedSystem &base, const Triplets &correction)
+  {
+    matrix_      = base.matrix_;  // the storage is reused while the size holds
+    free_index_  = base.free_index_;
+    rows_.clear();  // not assembled from a triplet list of its own
+    columns_.clear();
+    const int *outer = matrix_.outerIndexPtr(), *inner = matrix_.innerIndexPtr();
+    double    *values = matrix_.valuePtr();
+    for (const auto &t : correction)
+      {
+        const int r = free_index_[t.row()], c = free_index_[t.col()];
+        if (r < 0 || c < 0 || r < c)
+          continue;  // prescribed, or the upper triangle
+        const int *slot = std::lower_bound(inner + outer[c], inner + outer[c + 1], r);
+        if (slot == inner + outer[c + 1] || *slot != r)
+          throw std::logic_error("ReducedSystem::assemble_sum: a correction outside the base's pattern");
+        values[slot - inner] += t.value();
       }
   }
 } // namespace ritr

@@ -44,6 +44,21 @@ namespace ritr
     hessian_.clear();
     terms_.add_energy_hessian(z, candidates_, project, hessian_);
     hessian_.append_to(h);
+    add_obstacle_diagonal(z, h);
+  }
+
+  template <int dim>
+  void StepObjective<dim>::hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, Triplets &projection)
+  {
+    hessian_.clear();
+    terms_.add_energy_hessian_and_projection(z, candidates_, hessian_, projection);
+    hessian_.append_to(h);
+    add_obstacle_diagonal(z, h);
+  }
+
+  template <int dim>
+  void StepObjective<dim>::add_obstacle_diagonal(const Eigen::VectorXd &z, Triplets &h) const
+  {
     // Obstacle vertices carry no mass; a unit diagonal keeps their (prescribed) rows regular.
     for (Eigen::Index i = terms_.reference().size(); i < z.size(); ++i)
       h.emplace_back(i, i, 1.0);

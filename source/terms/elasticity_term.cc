@@ -1,13 +1,13 @@
-#include <ritr/common/psd_projection.h>
 #include <ritr/elasticity/cell_energy.h>
+#include <ritr/elasticity/density_hessian.h>
 #include <ritr/terms/elasticity_term.h>
 
-#include <Eigen/Cholesky>
-
 #include <tbb/blocked_range.h>
+#include <tbb/concurrent_vector.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace ritr
@@ -41,34 +41,6 @@ namespace ritr
         }
       g.F = multiply<dim, double>(edge_matrix<dim, double>(x), dm_inv);
       return g;
-    }
-
-    // d2Psi/dF2, flattened row-major (index k*dim + j). Neo-Hookean in closed form -- dual
-    // numbers cost as much as the rest of an element's Hessian --
-    //   H_(ij)(kl) = mu d_ik d_jl + lambda Finv_ji Finv_lk + (mu - lambda ln J) Finv_jk Finv_li;
-    // the other models through dual numbers.
-    template <int dim>
-    Eigen::Matrix<double, dim * dim, dim * dim> energy_density_hessian(const Material &m, const SmallMatrix<dim, double> &F)
-    {
-      if (m.model != MaterialModel::neo_hookean)
-        {
-          SmallMatrix<dim, SecondOrderDual<dim * dim>> f;
-          for (int k = 0; k < dim; ++k)
-            for (int j = 0; j < dim; ++j)
-              f[k][j] = SecondOrderDual<dim * dim>::variable(k * dim + j, F[k][j]);
-          return strain_energy_density<dim, SecondOrderDual<dim * dim>>(m, f).hess;
-        }
-      const double mu = m.mu(dim), lambda = m.lambda(dim);
-      const auto   f_inv     = inverse<dim, double>(F);
-      const double curvature = mu - lambda * std::log(determinant<dim, double>(F));
-      Eigen::Matrix<double, dim * dim, dim * dim> h;
-      for (int i = 0; i < dim; ++i)
-        for (int j = 0; j < dim; ++j)
-          for (int k = 0; k < dim; ++k)
-            for (int l = 0; l < dim; ++l)
-              h(i * dim + j, k * dim + l) = (i == k && j == l ? mu : 0.0) + lambda * f_inv[j][i] * f_inv[l][k] +
-                                            curvature * f_inv[j][k] * f_inv[l][i];
-      return h;
     }
 
     template <int dim>
@@ -140,32 +112,71 @@ namespace ritr
   template <int dim>
   void ElasticityTerm<dim>::add_hessian(const TermPoint &p, const bool project, MatrixAssembly<dim> &h) const
   {
-    constexpr int n    = dim * (dim + 1);
-    const auto   &mesh = materials_.mesh();
+    const auto &mesh = materials_.mesh();
     h.use_cell_blocks();
     tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, mesh.n_cells(), grain), [&](const tbb::blocked_range<std::size_t> &range) {
-        CellNodes<dim, double> xe, ue;
         for (std::size_t c = range.begin(); c != range.end(); ++c)
           {
-            gather<dim>(p.z, mesh.cells[c], xe);
-            gather<dim>(p.u, mesh.cells[c], ue);
-            const auto geo         = cell_geometry<dim>(xe, ue);
-            auto       psi_hessian = energy_density_hessian<dim>(materials_.of_cell(c), geo.F);
-            // The map F -> x is linear, so a PSD density Hessian gives a PSD element block; a
-            // successful Cholesky factorization proves it already is and saves the
-            // eigendecomposition.
-            if (project && Eigen::LLT<decltype(psi_hessian)>(psi_hessian).info() != Eigen::Success)
-              psi_hessian = project_to_psd(psi_hessian);
-            // dF/dx: F_kj = sum_a x_ak dN_a/dX_j.
-            Eigen::Matrix<double, dim * dim, n> dF_dx = Eigen::Matrix<double, dim * dim, n>::Zero();
-            for (int a = 0; a <= dim; ++a)
-              for (int k = 0; k < dim; ++k)
-                for (int j = 0; j < dim; ++j)
-                  dF_dx(k * dim + j, a * dim + k) = geo.shape_gradients[a][j];
-            h.cell_block(c).noalias() += (weight_ * geo.measure) * dF_dx.transpose() * psi_hessian * dF_dx;
+            auto cell = cell_hessian(p, c);
+            if (project)
+              if (const auto change = density_hessian_projection<dim>(materials_.of_cell(c), cell.F, cell.density_hessian))
+                cell.density_hessian += *change;
+            h.cell_block(c).noalias() += cell.element_matrix(cell.density_hessian);
           }
       });
+  }
+
+  template <int dim>
+  void ElasticityTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
+                                                       Triplets &projection) const
+  {
+    constexpr int n    = MatrixAssembly<dim>::cell_dofs;
+    const auto   &mesh = materials_.mesh();
+    exact.use_cell_blocks();
+    // Only the cells the projection changes (compressed ones) have a correction.
+    tbb::concurrent_vector<std::pair<std::size_t, Eigen::Matrix<double, n, n>>> changed;
+    tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, mesh.n_cells(), grain), [&](const tbb::blocked_range<std::size_t> &range) {
+        for (std::size_t c = range.begin(); c != range.end(); ++c)
+          {
+            const auto cell = cell_hessian(p, c);
+            exact.cell_block(c).noalias() += cell.element_matrix(cell.density_hessian);
+            if (const auto change = density_hessian_projection<dim>(materials_.of_cell(c), cell.F, cell.density_hessian))
+              changed.emplace_back(c, cell.element_matrix(*change));
+          }
+      });
+    // Cell order, whatever the threads' order was: the sum is the same on any number of them.
+    std::vector<std::pair<std::size_t, std::size_t>> order(changed.size());  // (cell, position)
+    for (std::size_t i = 0; i < changed.size(); ++i)
+      order[i] = {changed[i].first, i};
+    std::sort(order.begin(), order.end());
+    const std::size_t begin = projection.size();
+    projection.resize(begin + changed.size() * n * n);
+    for (std::size_t i = 0; i < order.size(); ++i)
+      MatrixAssembly<dim>::append_block(mesh.cells[order[i].first], changed[order[i].second].second.data(),
+                                        projection.data() + begin + i * n * n);
+  }
+
+  template <int dim>
+  typename ElasticityTerm<dim>::CellHessian ElasticityTerm<dim>::cell_hessian(const TermPoint &p, const std::size_t c) const
+  {
+    const auto            &mesh = materials_.mesh();
+    CellNodes<dim, double> xe, ue;
+    gather<dim>(p.z, mesh.cells[c], xe);
+    gather<dim>(p.u, mesh.cells[c], ue);
+    const auto  geo = cell_geometry<dim>(xe, ue);
+    CellHessian cell;
+    cell.F               = geo.F;
+    cell.density_hessian = energy_density_hessian<dim>(materials_.of_cell(c), geo.F);
+    // dF/dx: F_kj = sum_a x_ak dN_a/dX_j.
+    cell.dF_dx.setZero();
+    for (int a = 0; a <= dim; ++a)
+      for (int k = 0; k < dim; ++k)
+        for (int j = 0; j < dim; ++j)
+          cell.dF_dx(k * dim + j, a * dim + k) = geo.shape_gradients[a][j];
+    cell.scale = weight_ * geo.measure;
+    return cell;
   }
 
   template <int dim>

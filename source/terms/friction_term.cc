@@ -62,6 +62,21 @@ namespace ritr
   }
 
   template <int dim>
+  void FrictionTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
+                                                     Triplets &projection) const
+  {
+    if (friction_.empty())
+      return;
+    const Eigen::MatrixXd V       = collisions_.vertices(p.z);
+    const auto            hessian = [&](const bool project) {
+      return contact::friction_hessian<dim>(friction_, V, start_, epsilon_v_times_h_, project);
+    };
+    const Triplets plain = hessian(false);
+    collisions_.scatter_hessian(plain, 1.0, exact.triplets());
+    collisions_.scatter_hessian_change(plain, hessian(true), 1.0, projection);
+  }
+
+  template <int dim>
   void FrictionTerm<dim>::add_reference_derivatives(const TermPoint &p, const ReferenceBlock block, const bool coupling,
                                                     ReferenceDerivativeAssembly<dim> &d) const
   {

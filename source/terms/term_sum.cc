@@ -105,6 +105,16 @@ namespace ritr
   }
 
   template <int dim>
+  void TermSum<dim>::add_energy_hessian_and_projection(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                                       MatrixAssembly<dim> &exact, Triplets &projection) const
+  {
+    const TermPoint p{z, reference_, candidates};
+    for (const auto &t : terms_)
+      if (t->depends_on_state())
+        t->add_hessian_and_projection(p, exact, projection);
+  }
+
+  template <int dim>
   double TermSum<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
   {
     double fraction = 1.0;

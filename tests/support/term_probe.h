@@ -6,7 +6,10 @@
 
 #include "finite_difference.h"
 
+#include <gtest/gtest.h>
+
 #include <random>
+#include <utility>
 
 namespace ritr::test_support
 {
@@ -40,6 +43,28 @@ namespace ritr::test_support
       MatrixAssembly<dim> h(terms.mesh().cells);
       terms.add_energy_hessian(z, terms.candidates_at(z), project, h);
       return dense(h.to_triplets(), z.size(), z.size());
+    }
+    // The trust-region Newton's one-pass Hessians, dense: the exact one and the projected one
+    // as exact plus the projection's change.
+    std::pair<Eigen::MatrixXd, Eigen::MatrixXd> hessian_and_projected(const Eigen::VectorXd &z,
+                                                                      const Eigen::VectorXd &u) const
+    {
+      terms.set_reference(u);
+      MatrixAssembly<dim> exact(terms.mesh().cells);
+      Triplets            projection;
+      terms.add_energy_hessian_and_projection(z, terms.candidates_at(z), exact, projection);
+      const Eigen::MatrixXd h = dense(exact.to_triplets(), z.size(), z.size());
+      return {h, h + dense(projection, z.size(), z.size())};
+    }
+    // They equal the two Hessians assembled apart; returns whether the projection changed
+    // anything at (z, u).
+    bool expect_one_pass_hessians_match(const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+    {
+      const auto [exact, projected] = hessian_and_projected(z, u);
+      const Eigen::MatrixXd apart   = hessian(z, u, true);
+      EXPECT_EQ((exact - hessian(z, u, false)).cwiseAbs().maxCoeff(), 0.0);
+      EXPECT_LE((projected - apart).cwiseAbs().maxCoeff(), 1e-12 * apart.cwiseAbs().maxCoeff());
+      return (apart - exact).cwiseAbs().maxCoeff() > 1e-8 * apart.cwiseAbs().maxCoeff();
     }
     // R's derivatives in u with the coupling blocks.
     typename TermSum<dim>::ReferenceDerivatives derivatives(const Eigen::VectorXd &z, const Eigen::VectorXd &u,

@@ -69,6 +69,8 @@ namespace
     EXPECT_LT(test_support::relative_error(d.gx, probe.gradient(z, u)), 1e-12);
     EXPECT_LT(test_support::relative_error(test_support::dense(d.hxx, z.size(), z.size()), probe.hessian(z, u, true)),
               1e-12);
+    // The trust-region Newton's one-pass Hessians, barrier and friction.
+    probe.expect_one_pass_hessians_match(z, u);
   }
 } // namespace
 

@@ -4,7 +4,11 @@
 #include <ritr/terms/elasticity_term.h>
 #include <ritr/terms/inertia_term.h>
 
+#include <ritr/common/psd_projection.h>
+#include <ritr/elasticity/density_hessian.h>
+
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <gtest/gtest.h>
 
 #include "term_probe.h"
@@ -82,8 +86,14 @@ namespace
               1e-5);
 
     // Projected blocks are positive semi-definite even under strong compression.
-    const Eigen::MatrixXd hd = probe.hessian(0.3 * test_support::deform(u, dim, 0.0), u, true);
+    const Eigen::VectorXd compressed = 0.3 * test_support::deform(u, dim, 0.0);
+    const Eigen::MatrixXd hd         = probe.hessian(compressed, u, true);
     EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(hd).eigenvalues().minCoeff(), -1e-8 * hd.norm());
+    // The trust-region Newton's one-pass assembly gives the same two Hessians; compression
+    // makes the nonlinear models indefinite (a rod stays convex), so the projection has work
+    // to do there.
+    probe.expect_one_pass_hessians_match(x, u);
+    EXPECT_EQ(probe.expect_one_pass_hessians_match(compressed, u), dim > 1 && model != MaterialModel::linear);
   }
 
   // Statics: elasticity alone, with weight 1.
@@ -106,6 +116,60 @@ TEST(ElasticityDerivatives, Linear2D) { check_all_derivatives<2>(MaterialModel::
 TEST(ElasticityDerivatives, Linear3D) { check_all_derivatives<3>(MaterialModel::linear); }
 TEST(ElasticityDerivatives, StVK2D) { check_all_derivatives<2>(MaterialModel::stvk); }
 TEST(ElasticityDerivatives, StVK3D) { check_all_derivatives<3>(MaterialModel::stvk); }
+
+// The analytic eigensystem's projection of d2Psi/dF2 against a numerical eigendecomposition,
+// over compressed, stretched, sheared and rotated deformations, with equal and nearly equal
+// singular values (where the flip mode's eigenvalue is a limit).
+template <int dim>
+void check_density_projection(const MaterialModel model)
+{
+  Material m;
+  m.model          = model;
+  m.youngs_modulus = 1e4;
+  m.poisson_ratio  = 0.4;
+  using Square     = Eigen::Matrix<double, dim, dim>;
+  std::vector<Eigen::Matrix<double, dim, 1>> stretches;
+  for (const double a : {0.3, 0.7, 1.0, 1.0 + 1e-9, 1.4, 2.5})
+    for (const double b : {0.5, 1.0, 1.3})
+      {
+        Eigen::Matrix<double, dim, 1> s = Eigen::Matrix<double, dim, 1>::Constant(b);
+        s[0]                            = a;
+        stretches.push_back(s);
+      }
+  if (model == MaterialModel::stvk)
+    stretches.push_back(-stretches[1]);  // StVK has no barrier against inversion
+  unsigned int changed = 0, seed = 1;
+  for (const auto &s : stretches)
+    {
+      // F = R1 diag(s) R2 with random rotations (QR of random matrices, det fixed to +1).
+      const auto rotation = [&]() {
+        Square q = Eigen::HouseholderQR<Square>(Square::Random()).householderQ();
+        if (q.determinant() < 0)
+          q.col(0) *= -1;
+        return q;
+      };
+      std::srand(seed++);
+      const Square f = rotation() * s.asDiagonal() * rotation();
+      SmallMatrix<dim, double> F;
+      for (int k = 0; k < dim; ++k)
+        for (int j = 0; j < dim; ++j)
+          F[k][j] = f(k, j);
+      const DensityHessian<dim> h         = energy_density_hessian<dim>(m, F);
+      const auto                change    = density_hessian_projection<dim>(m, F, h);
+      const DensityHessian<dim> projected = change ? DensityHessian<dim>(h + *change) : h;
+      const DensityHessian<dim> reference = project_to_psd(h);
+      EXPECT_LE((projected - reference).cwiseAbs().maxCoeff(), 1e-9 * h.cwiseAbs().maxCoeff())
+        << "stretches " << s.transpose();
+      changed += change.has_value();
+    }
+  // Compression makes every nonlinear model indefinite somewhere in the list.
+  EXPECT_GT(changed, 2u);
+}
+
+TEST(ElasticityDerivatives, DensityProjectionNeoHookean2D) { check_density_projection<2>(MaterialModel::neo_hookean); }
+TEST(ElasticityDerivatives, DensityProjectionNeoHookean3D) { check_density_projection<3>(MaterialModel::neo_hookean); }
+TEST(ElasticityDerivatives, DensityProjectionStVK2D) { check_density_projection<2>(MaterialModel::stvk); }
+TEST(ElasticityDerivatives, DensityProjectionStVK3D) { check_density_projection<3>(MaterialModel::stvk); }
 
 TEST(ElasticityDerivatives, NeoHookeanInversionIsInfinite)
 {

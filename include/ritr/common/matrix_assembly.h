@@ -35,8 +35,14 @@ namespace ritr
     }
     Block cell_block(const std::size_t c) { return Block(values_.data() + c * cell_dofs * cell_dofs); }
 
+    const std::vector<Cell> &cells() const { return *cells_; }
+
     Triplets       &triplets() { return triplets_; }
     const Triplets &triplets() const { return triplets_; }
+
+    // One cell's block (column-major, cell_dofs^2 values) appended as triplets, in the order
+    // append_to() writes a cell block.
+    static void append_block(const Cell &cell, const double *block, Eigen::Triplet<double> *out);
 
     // Forgets every contribution; the storage stays for the next assembly.
     void clear();

@@ -32,6 +32,17 @@ namespace ritr
     // With `project`, every element and contact stencil is projected onto the positive
     // semi-definite cone; without, the exact Hessian (possibly indefinite).
     virtual void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) = 0;
+    // The exact Hessian appended to h and the projected one minus it appended to
+    // `projection`, which the trust-region iteration needs both of. Objectives override it to
+    // evaluate each stencil once.
+    virtual void hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, Triplets &projection)
+    {
+      const std::size_t begin = h.size();
+      hessian(z, h, false);
+      hessian(z, projection, true);
+      for (std::size_t i = begin; i < h.size(); ++i)
+        projection.emplace_back(h[i].row(), h[i].col(), -h[i].value());
+    }
     // Largest fraction of dz that is certified admissible (intersection-free; 1 without
     // contact).
     virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz)
@@ -144,8 +155,9 @@ namespace ritr
       failed
     };
     // One iteration of HessianProjection::trust_region at z, all prescribed entries at their
-    // targets (newton_trust_region.cc). The projected Hessian is assembled in system_ and
-    // factorized (with `shift`); `g` is the full gradient at z, e0 the energy there.
+    // targets (newton_trust_region.cc). The exact Hessian is assembled in exact_system_, the
+    // projected one in system_ and factorized (with `shift`); `g` is the full gradient at z,
+    // e0 the energy there.
     Outcome trust_region_iteration(NewtonObjective &objective, Eigen::VectorXd &z, const Eigen::VectorXd &g,
                                    const std::vector<int> &free_index, double e0, double shift,
                                    const NewtonSettings &settings, TrustRegion &region, NewtonResult &result);
@@ -153,6 +165,7 @@ namespace ritr
     ReducedSystem  system_;  // keeps its pattern across iterations and solves
     ReducedSystem  exact_system_;  // the exact Hessian of a trust-region iteration
     Triplets       exact_triplets_;  // its entries, kept so that their storage is reused
+    Triplets       projection_triplets_;  // the projected Hessian minus the exact one
     SparseCholesky cholesky_;
     double         linear_seconds_ = 0;
   };

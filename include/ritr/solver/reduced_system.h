@@ -22,6 +22,10 @@ namespace ritr
     void assemble(const Triplets &hessian, const std::vector<int> &free_index,
                   int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs);
 
+    // The matrix of `base` plus `correction`, whose entries lie in base's pattern (the
+    // projected Hessian as the exact one plus the projection's change on a few stencils).
+    void assemble_sum(const ReducedSystem &base, const Triplets &correction);
+
     const Eigen::SparseMatrix<double> &matrix() const { return matrix_; }
 
   private:

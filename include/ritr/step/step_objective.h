@@ -31,9 +31,12 @@ namespace ritr
     double value(const Eigen::VectorXd &z) override;
     void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) override;
     void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) override;
+    void   hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, Triplets &projection) override;
     double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) override;
 
   private:
+    void add_obstacle_diagonal(const Eigen::VectorXd &z, Triplets &h) const;
+
     TermSum<dim>            &terms_;
     MatrixAssembly<dim>      hessian_;   // storage reused across iterations
     ContactBarrierTerm<dim> *barrier_;   // null without contact

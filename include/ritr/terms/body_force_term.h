@@ -18,6 +18,7 @@ namespace ritr
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &, bool, MatrixAssembly<dim> &) const override {}  // linear in x
+    bool   convex_in_state() const override { return true; }
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
 

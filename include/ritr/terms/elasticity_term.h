@@ -5,6 +5,7 @@
 // joint derivatives in (x, u) of the outer solve use second-order dual numbers on the same
 // kernel.
 #include <ritr/elasticity/cell_materials.h>
+#include <ritr/elasticity/density_hessian.h>
 #include <ritr/terms/energy_term.h>
 
 namespace ritr
@@ -20,10 +21,27 @@ namespace ritr
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;
+    void   add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
+                                      Triplets &projection) const override;
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
 
   private:
+    static constexpr int cell_dofs = MatrixAssembly<dim>::cell_dofs;
+    // A cell's Hessian in x as d2Psi/dF2 (which the projection acts on) mapped by dF/dx.
+    struct CellHessian
+    {
+      SmallMatrix<dim, double>                    F;
+      DensityHessian<dim>                         density_hessian;
+      Eigen::Matrix<double, dim * dim, cell_dofs> dF_dx;
+      double                                      scale;  // weight times cell measure
+      Eigen::Matrix<double, cell_dofs, cell_dofs> element_matrix(const DensityHessian<dim> &m) const
+      {
+        return scale * dF_dx.transpose() * m * dF_dx;
+      }
+    };
+    CellHessian cell_hessian(const TermPoint &p, std::size_t cell) const;
+
     const CellMaterials<dim> &materials_;
     double                    weight_ = 1.0;
   };

@@ -81,6 +81,26 @@ namespace ritr
     virtual void add_gradient(const TermPoint &p, Eigen::VectorXd &g) const = 0;
     // d2/dz2; with `project` every stencil's block is projected onto the PSD cone.
     virtual void add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const = 0;
+    // A term whose every stencil is PSD in z (inertia, linear terms) has nothing to project.
+    virtual bool convex_in_state() const { return false; }
+    // Both Hessians the trust-region Newton uses, in one pass: the exact one into `exact` and
+    // projected minus exact into `projection` (nonzero only on the stencils the projection
+    // changes). The default evaluates the term three times; terms override it to compute
+    // each stencil once.
+    virtual void add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact, Triplets &projection) const
+    {
+      add_hessian(p, false, exact);
+      if (convex_in_state())
+        return;
+      MatrixAssembly<dim> projected(exact.cells()), plain(exact.cells());
+      add_hessian(p, true, projected);
+      add_hessian(p, false, plain);
+      const std::size_t begin = projection.size();
+      plain.append_to(projection);
+      for (std::size_t i = begin; i < projection.size(); ++i)
+        projection[i] = Eigen::Triplet<double>(projection[i].row(), projection[i].col(), -projection[i].value());
+      projected.append_to(projection);
+    }
     // g_u and H_uu (per `block`); with `coupling` also g_z, H_zz and H_zu. H_zz there is the
     // matrix the reduced Hessian eliminates: exact for cell terms, projected for contact.
     virtual void add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,

@@ -31,6 +31,7 @@ namespace ritr
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;
+    bool   convex_in_state() const override { return true; }  // the mass matrix is positive definite
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
 

@@ -30,6 +30,7 @@ namespace ritr
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &, Eigen::VectorXd &) const override {}
     void   add_hessian(const TermPoint &, bool, MatrixAssembly<dim> &) const override {}
+    bool   convex_in_state() const override { return true; }  // a constant of the state
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
 
