@@ -45,15 +45,14 @@ namespace ritr
     const LinearMap apply = [&](const Eigen::VectorXd &p) {
       return Eigen::VectorXd(hessian_.apply(p) + barrier.apply_secants(p));
     };
-    const LinearMap metric       = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(metric_ * v); };
     const LinearMap precondition = [&](const Eigen::VectorXd &v) { return preconditioner_.solve(v); };
     const double    region       = std::sqrt(sigma_) * radius;
     const unsigned  max_cg       = std::max<Eigen::Index>(g_.size(), 1);
     for (int refinement = 0;; ++refinement)
       {
-        SteihaugResult cg = steihaug_cg(apply, g_, region, forcing * g_.norm(), max_cg, metric, precondition);
+        SteihaugResult cg = steihaug_cg(apply, g_, region, forcing * g_.norm(), max_cg, precondition);
         if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
-          cg = steihaug_cg(apply, g_, region, 1e-8 * g_.norm(), max_cg, metric, precondition);
+          cg = steihaug_cg(apply, g_, region, 1e-8 * g_.norm(), max_cg, precondition);
         step.p      = cg.step;
         step.du     = basis_ * cg.step;
         step.newton = cg.interior;

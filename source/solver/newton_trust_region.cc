@@ -35,11 +35,9 @@ namespace ritr
     const Eigen::VectorXd g_free = gather_free(g, free_index, n_free);
     const double          gradient_norm = g_free.norm();
 
-    const Eigen::SparseMatrix<double> &H = exact_system_.matrix(), &M = system_.matrix();
-    const LinearMap apply  = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(H.selfadjointView<Eigen::Lower>() * v); };
-    const LinearMap metric = [&](const Eigen::VectorXd &v) {
-      return Eigen::VectorXd(M.selfadjointView<Eigen::Lower>() * v + shift * v);
-    };
+    // The region's norm is that of the factorized matrix M (projected Hessian plus `shift`).
+    const Eigen::SparseMatrix<double> &H = exact_system_.matrix();
+    const LinearMap apply = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(H.selfadjointView<Eigen::Lower>() * v); };
     const LinearMap precondition = [&](const Eigen::VectorXd &v) {
       const auto            start = std::chrono::steady_clock::now();
       const Eigen::VectorXd r     = cholesky_.solve(v);
@@ -60,14 +58,12 @@ namespace ritr
     const double forcing = std::min(1e-3, std::sqrt(gradient_norm / std::max(region.first_gradient, 1e-300)));
     const double round_off = energy_round_off(e0);
     const double position_round_off = 4 * std::numeric_limits<double>::epsilon() * z.lpNorm<Eigen::Infinity>();
-    const auto   norm_in_metric = [&](const Eigen::VectorXd &p) { return std::sqrt(std::max(p.dot(metric(p)), 0.0)); };
 
     Eigen::VectorXd dz(n), trial, trial_gradient(n);
     for (;;)
       {
         ++result.line_search_trials;
-        const SteihaugResult cg = steihaug_cg(apply, g_free, region.radius, forcing * gradient_norm, 200, metric,
-                                              precondition);
+        const SteihaugResult cg = steihaug_cg(apply, g_free, region.radius, forcing * gradient_norm, 200, precondition);
         dz.setZero();
         scatter_free(cg.step, free_index, dz);
         result.last_step_norm = objective.step_norm(dz);
@@ -85,9 +81,10 @@ namespace ritr
           }
         // The part of the step CCD certifies, and the model's change over that part.
         const double    ccd_bound = std::min(1.0, objective.max_step(z, dz));
-        const double    slope = g.dot(dz), curvature = cg.step.dot(apply(cg.step));
+        // CG tracked the model's change g.p + 1/2 p.H p along the way: no product with H here.
+        const double    slope = g_free.dot(cg.step), curvature = 2 * (cg.predicted_change - slope);
         const double    predicted = ccd_bound * slope + 0.5 * ccd_bound * ccd_bound * curvature;
-        const double    step_length = ccd_bound * norm_in_metric(cg.step);
+        const double    step_length = ccd_bound * cg.metric_norm;
         trial               = z + ccd_bound * dz;
         const double e      = objective.value(trial);
         bool accepted = false, judged_by_gradient = false;

@@ -82,6 +82,34 @@ TEST(SteihaugCG, NegativeCurvatureIsFollowedToTheBoundary)
   EXPECT_NEAR(r.predicted_change, model(S, g, r.step), 1e-12 * std::abs(r.predicted_change));
 }
 
+TEST(SteihaugCG, APreconditionedRegionIsMeasuredInItsMetric)
+{
+  // M enters through M^-1 only; the step's M-norm comes from CG's recurrences.
+  const Eigen::MatrixXd M = random_symmetric(12, 6.0, 9);
+  ASSERT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues().minCoeff(), 0);
+  const auto            m_inverse = M.ldlt();
+  const auto            precondition = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(m_inverse.solve(v)); };
+  const auto            metric_norm  = [&](const Eigen::VectorXd &p) { return std::sqrt(p.dot(M * p)); };
+  for (const double curvature_shift : {8.0, -0.5})  // definite: boundary or Newton step; indefinite: boundary
+    {
+      const Eigen::MatrixXd S     = random_symmetric(12, curvature_shift, 10);
+      const Eigen::VectorXd g     = random_vector(12, 11);
+      const auto            apply = [&](const Eigen::VectorXd &p) { return Eigen::VectorXd(S * p); };
+      const auto bounded = steihaug_cg(apply, g, 0.05, 1e-12 * g.norm(), 100, precondition);
+      EXPECT_FALSE(bounded.interior);
+      EXPECT_NEAR(metric_norm(bounded.step), 0.05, 1e-10);
+      EXPECT_NEAR(bounded.metric_norm, 0.05, 1e-12);
+      EXPECT_NEAR(bounded.predicted_change, model(S, g, bounded.step), 1e-10 * std::abs(bounded.predicted_change));
+      const auto free = steihaug_cg(apply, g, 1e6, 1e-12 * g.norm(), 100, precondition);
+      if (curvature_shift > 0)
+        {
+          EXPECT_TRUE(free.interior);
+          EXPECT_LT((free.step + S.ldlt().solve(g)).norm(), 1e-9 * free.step.norm());
+        }
+      EXPECT_NEAR(free.metric_norm, metric_norm(free.step), 1e-9 * metric_norm(free.step));
+    }
+}
+
 TEST(ReducedHessian, MatchesTheDenseSchurComplement)
 {
   // State of 10 entries, 2 of them prescribed; reference of 8 entries moving in a basis of 5.

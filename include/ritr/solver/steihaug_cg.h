@@ -3,7 +3,8 @@
 // approximately by Steihaug's truncated conjugate gradients, preconditioned by M: CG from
 // p = 0 until the residual falls below `tolerance`, a direction of non-positive curvature
 // appears or an iterate leaves the trust region; the last two end on the region's boundary.
-// In the M-norm the iterates' norms grow monotonically, which makes the boundary test exact.
+// In the M-norm the iterates' norms grow monotonically, which makes the boundary test exact;
+// the norms follow from recurrences, so M itself is never applied, only M^-1.
 // S is only applied, never formed, so it may be a Schur complement that costs a
 // back-substitution per product.
 #include <Eigen/Core>
@@ -20,11 +21,11 @@ namespace ritr
     double          predicted_change = 0;  // g.p + 1/2 p.S p (negative)
     bool            interior   = false;  // CG converged inside the region (a Newton step)
     bool            negative_curvature = false;  // stopped on a direction with d.S d <= 0
+    double          metric_norm = 0;      // |step|_M
     unsigned int    iterations = 0;       // products with S
   };
 
-  // `metric` applies M and `precondition` applies M^-1; both empty: M = I.
+  // `precondition` applies M^-1 (empty: M = I).
   SteihaugResult steihaug_cg(const LinearMap &apply, const Eigen::VectorXd &g, double radius, double tolerance,
-                             unsigned int max_iterations, const LinearMap &metric = {},
-                             const LinearMap &precondition = {});
+                             unsigned int max_iterations, const LinearMap &precondition = {});
 } // namespace ritr
