@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <map>
-#include <stdexcept>
 
 namespace ritr
 {
@@ -184,19 +183,6 @@ namespace ritr
     for (const auto &t : hc)
       h.emplace_back(state_vertex_[t.row() / dim] * dim + t.row() % dim,
                      state_vertex_[t.col() / dim] * dim + t.col() % dim, scale * t.value());
-  }
-
-  template <int dim>
-  void CollisionMesh<dim>::scatter_hessian_change(const Triplets &exact, const Triplets &projected, const double scale,
-                                                  Triplets &h) const
-  {
-    if (exact.size() != projected.size())
-      throw std::logic_error("scatter_hessian_change: the two Hessians have different stencils");
-    for (std::size_t i = 0; i < exact.size(); ++i)
-      if (projected[i].value() != exact[i].value())
-        h.emplace_back(state_vertex_[exact[i].row() / dim] * dim + exact[i].row() % dim,
-                       state_vertex_[exact[i].col() / dim] * dim + exact[i].col() % dim,
-                       scale * (projected[i].value() - exact[i].value()));
   }
 
   template <int dim>

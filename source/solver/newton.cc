@@ -63,10 +63,10 @@ namespace ritr
             // The model's exact Hessian and the projected one it is preconditioned with, from
             // one evaluation of the stencils.
             exact_triplets_.clear();
-            projection_triplets_.clear();
-            objective.hessian_and_projection(z, exact_triplets_, projection_triplets_);
+            projection_changes_.clear();
+            objective.hessian_and_projection(z, exact_triplets_, projection_changes_);
             exact_system_.assemble(exact_triplets_, free_index, n_free, dz, rhs);
-            system_.assemble_sum(exact_system_, projection_triplets_);
+            system_.assemble_changed(exact_system_, projection_changes_);
           }
         else
           {

@@ -1,21 +1,9 @@
 #include <ritr/solver/reduced_system.h>
 
 #include <algorithm>
-#include <stdexcept>
 
 namespace ritr
 {
-  bool ReducedSystem::same_structure(const Triplets &hessian,
-                                     const std::vector<int>                   &free_index) const
-  {
-    if (hessian.size() != rows_.size() || free_index != free_index_)
-      return false;
-    for (std::size_t i = 0; i < hessian.size(); ++i)
-      if (hessian[i].row() != rows_[i] || hessian[i].col() != columns_[i])
-        return false;
-    return true;
-  }
-
   void ReducedSystem::build_pattern(const Triplets &hessian,
                                     const std::vector<int> &free_index, const int n_free)
   {
@@ -55,37 +43,46 @@ namespace ritr
   void ReducedSystem::assemble(const Triplets &hessian, const std::vector<int> &free_index,
                                const int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs)
   {
-    if (!same_structure(hessian, free_index))
-      build_pattern(hessian, free_index, n_free);
+    // The structure is checked while the values are added (one pass over the list); on a
+    // change the pattern is rebuilt and the values added again.
+    if (hessian.size() == rows_.size() && free_index == free_index_)
+      {
+        const Eigen::VectorXd rhs_in = rhs;
+        if (fill(hessian, prescribed_step, rhs, true))
+          return;
+        rhs = rhs_in;
+      }
+    build_pattern(hessian, free_index, n_free);
+    fill(hessian, prescribed_step, rhs, false);
+  }
+
+  bool ReducedSystem::fill(const Triplets &hessian, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs,
+                           const bool check_structure)
+  {
     double *values = matrix_.valuePtr();
     std::fill(values, values + matrix_.nonZeros(), 0.0);
     for (std::size_t i = 0; i < hessian.size(); ++i)
       {
+        if (check_structure && (hessian[i].row() != rows_[i] || hessian[i].col() != columns_[i]))
+          return false;
         const int s = slot_[i];
         if (s >= 0)
           values[s] += hessian[i].value();
         else if (s <= -2)
           rhs[-2 - s] -= hessian[i].value() * prescribed_step[columns_[i]];
       }
+    return true;
   }
 
-  void ReducedSystem::assemble_sum(const ReducedSystem &base, const Triplets &correction)
+  void ReducedSystem::assemble_changed(const ReducedSystem &base, const TripletChanges &changes)
   {
-    matrix_      = base.matrix_;  // the storage is reused while the size holds
-    free_index_  = base.free_index_;
+    matrix_     = base.matrix_;  // the storage is reused while the size holds
+    free_index_ = base.free_index_;
     rows_.clear();  // not assembled from a triplet list of its own
     columns_.clear();
-    const int *outer = matrix_.outerIndexPtr(), *inner = matrix_.innerIndexPtr();
-    double    *values = matrix_.valuePtr();
-    for (const auto &t : correction)
-      {
-        const int r = free_index_[t.row()], c = free_index_[t.col()];
-        if (r < 0 || c < 0 || r < c)
-          continue;  // prescribed, or the upper triangle
-        const int *slot = std::lower_bound(inner + outer[c], inner + outer[c + 1], r);
-        if (slot == inner + outer[c + 1] || *slot != r)
-          throw std::logic_error("ReducedSystem::assemble_sum: a correction outside the base's pattern");
-        values[slot - inner] += t.value();
-      }
+    double *values = matrix_.valuePtr();
+    for (const auto &[position, value] : changes)
+      if (const int s = base.slot_[position]; s >= 0)
+        values[s] += value;  // upper-triangle and prescribed entries have no slot
   }
 } // namespace ritr

@@ -48,10 +48,11 @@ namespace ritr
   }
 
   template <int dim>
-  void StepObjective<dim>::hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, Triplets &projection)
+  void StepObjective<dim>::hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, TripletChanges &projection)
   {
     hessian_.clear();
-    terms_.add_energy_hessian_and_projection(z, candidates_, hessian_, projection);
+    terms_.add_energy_hessian_and_projection(z, candidates_, hessian_);
+    hessian_.append_changes(h.size(), projection);
     hessian_.append_to(h);
     add_obstacle_diagonal(z, h);
   }

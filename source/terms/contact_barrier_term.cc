@@ -65,17 +65,17 @@ namespace ritr
   }
 
   template <int dim>
-  void ContactBarrierTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
-                                                           Triplets &projection) const
+  void ContactBarrierTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const
   {
     const Eigen::MatrixXd V           = collisions_.vertices(p.z);
     const auto            constraints = collisions_.active_constraints(V, p.candidates);
     const auto hessian = [&](const bool project) {
       return contact::barrier_hessian<dim>(constraints, V, collisions_.dhat(), collisions_.weights(), project);
     };
-    const Triplets plain = hessian(false);
-    collisions_.scatter_hessian(plain, kappa_, exact.triplets());
-    collisions_.scatter_hessian_change(plain, hessian(true), kappa_, projection);
+    const Triplets    plain = hessian(false);
+    const std::size_t first = h.triplets().size();
+    collisions_.scatter_hessian(plain, kappa_, h.triplets());  // one triplet per stencil entry, in order
+    h.change_triplets(first, plain, hessian(true), kappa_);
   }
 
   template <int dim>

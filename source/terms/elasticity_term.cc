@@ -3,11 +3,9 @@
 #include <ritr/terms/elasticity_term.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/concurrent_vector.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
-#include <algorithm>
 #include <cmath>
 
 namespace ritr
@@ -128,34 +126,22 @@ namespace ritr
   }
 
   template <int dim>
-  void ElasticityTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
-                                                       Triplets &projection) const
+  void ElasticityTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const
   {
-    constexpr int n    = MatrixAssembly<dim>::cell_dofs;
-    const auto   &mesh = materials_.mesh();
-    exact.use_cell_blocks();
-    // Only the cells the projection changes (compressed ones) have a correction.
-    tbb::concurrent_vector<std::pair<std::size_t, Eigen::Matrix<double, n, n>>> changed;
+    const auto &mesh = materials_.mesh();
+    h.use_cell_blocks();
+    h.use_change_blocks();
     tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, mesh.n_cells(), grain), [&](const tbb::blocked_range<std::size_t> &range) {
         for (std::size_t c = range.begin(); c != range.end(); ++c)
           {
             const auto cell = cell_hessian(p, c);
-            exact.cell_block(c).noalias() += cell.element_matrix(cell.density_hessian);
+            h.cell_block(c).noalias() += cell.element_matrix(cell.density_hessian);
+            // Only the cells the projection changes (compressed ones) get a change block.
             if (const auto change = density_hessian_projection<dim>(materials_.of_cell(c), cell.F, cell.density_hessian))
-              changed.emplace_back(c, cell.element_matrix(*change));
+              h.change_block(c).noalias() += cell.element_matrix(*change);
           }
       });
-    // Cell order, whatever the threads' order was: the sum is the same on any number of them.
-    std::vector<std::pair<std::size_t, std::size_t>> order(changed.size());  // (cell, position)
-    for (std::size_t i = 0; i < changed.size(); ++i)
-      order[i] = {changed[i].first, i};
-    std::sort(order.begin(), order.end());
-    const std::size_t begin = projection.size();
-    projection.resize(begin + changed.size() * n * n);
-    for (std::size_t i = 0; i < order.size(); ++i)
-      MatrixAssembly<dim>::append_block(mesh.cells[order[i].first], changed[order[i].second].second.data(),
-                                        projection.data() + begin + i * n * n);
   }
 
   template <int dim>

@@ -62,8 +62,7 @@ namespace ritr
   }
 
   template <int dim>
-  void FrictionTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
-                                                     Triplets &projection) const
+  void FrictionTerm<dim>::add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const
   {
     if (friction_.empty())
       return;
@@ -71,9 +70,10 @@ namespace ritr
     const auto            hessian = [&](const bool project) {
       return contact::friction_hessian<dim>(friction_, V, start_, epsilon_v_times_h_, project);
     };
-    const Triplets plain = hessian(false);
-    collisions_.scatter_hessian(plain, 1.0, exact.triplets());
-    collisions_.scatter_hessian_change(plain, hessian(true), 1.0, projection);
+    const Triplets    plain = hessian(false);
+    const std::size_t first = h.triplets().size();
+    collisions_.scatter_hessian(plain, 1.0, h.triplets());  // one triplet per stencil entry, in order
+    h.change_triplets(first, plain, hessian(true), 1.0);
   }
 
   template <int dim>

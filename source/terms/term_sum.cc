@@ -106,12 +106,12 @@ namespace ritr
 
   template <int dim>
   void TermSum<dim>::add_energy_hessian_and_projection(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
-                                                       MatrixAssembly<dim> &exact, Triplets &projection) const
+                                                       MatrixAssembly<dim> &h) const
   {
     const TermPoint p{z, reference_, candidates};
     for (const auto &t : terms_)
       if (t->depends_on_state())
-        t->add_hessian_and_projection(p, exact, projection);
+        t->add_hessian_and_projection(p, h);
   }
 
   template <int dim>

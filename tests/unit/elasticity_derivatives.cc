@@ -1,5 +1,6 @@
 // Finite-difference checks of the cell terms (elasticity for every material, inertia,
 // gravity) w.r.t. deformed positions x and reference positions u.
+#include <ritr/step/step_objective.h>
 #include <ritr/terms/body_force_term.h>
 #include <ritr/terms/elasticity_term.h>
 #include <ritr/terms/inertia_term.h>
@@ -94,6 +95,40 @@ namespace
     // to do there.
     probe.expect_one_pass_hessians_match(x, u);
     EXPECT_EQ(probe.expect_one_pass_hessians_match(compressed, u), dim > 1 && model != MaterialModel::linear);
+    // Newton's generic pair (two separate assemblies) against the step objective's one pass.
+    StepObjective<dim> objective(terms);
+    objective.begin_iteration(compressed);
+    const auto projected = [&](const bool generic) {
+      Triplets       h;
+      TripletChanges changes;
+      if (generic)
+        objective.NewtonObjective::hessian_and_projection(compressed, h, changes);
+      else
+        objective.hessian_and_projection(compressed, h, changes);
+      return std::make_pair(test_support::dense(h, n, n), test_support::dense(test_support::with_changes(h, changes), n, n));
+    };
+    const auto [one_exact, one_projected] = projected(false);
+    const auto [two_exact, two_projected] = projected(true);
+    EXPECT_EQ((one_exact - two_exact).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_LE((one_projected - two_projected).cwiseAbs().maxCoeff(), 1e-12 * one_exact.cwiseAbs().maxCoeff());
+    // The same for a term's generic one-pass assembly (two more assemblies of the term).
+    const auto *elasticity = terms.template find<ElasticityTerm<dim>>();
+    const auto  term_pass  = [&](const bool generic) {
+      MatrixAssembly<dim> h(mesh.cells);
+      const TermPoint     point{compressed, u, {}};
+      if (generic)
+        elasticity->EnergyTerm<dim>::add_hessian_and_projection(point, h);
+      else
+        elasticity->add_hessian_and_projection(point, h);
+      TripletChanges changes;
+      h.append_changes(0, changes);
+      const Triplets t = h.to_triplets();
+      return std::make_pair(test_support::dense(t, n, n), test_support::dense(test_support::with_changes(t, changes), n, n));
+    };
+    const auto [term_exact, term_projected]       = term_pass(false);
+    const auto [generic_exact, generic_projected] = term_pass(true);
+    EXPECT_EQ((term_exact - generic_exact).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_LE((term_projected - generic_projected).cwiseAbs().maxCoeff(), 1e-12 * term_exact.cwiseAbs().maxCoeff());
   }
 
   // Statics: elasticity alone, with weight 1.

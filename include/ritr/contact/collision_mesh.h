@@ -60,9 +60,6 @@ namespace ritr
     // Collision-vertex gradients and Hessians, times `scale`, added in state numbering.
     void scatter_gradient(const Eigen::VectorXd &gc, double scale, Eigen::VectorXd &g) const;
     void scatter_hessian(const Triplets &hc, double scale, Triplets &h) const;
-    // `projected` minus `exact`, times `scale`, for two Hessians of the same stencils listed
-    // in the same order: only the entries the projection changed.
-    void scatter_hessian_change(const Triplets &exact, const Triplets &projected, double scale, Triplets &h) const;
     int  state_vertex(int collision_vertex) const { return state_vertex_[collision_vertex]; }
 
     // The body boundary facets a constraint's weight is made of, each with its share (1/dim

@@ -16,6 +16,7 @@
 #include <Eigen/Sparse>
 
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 namespace ritr
@@ -32,16 +33,26 @@ namespace ritr
     // With `project`, every element and contact stencil is projected onto the positive
     // semi-definite cone; without, the exact Hessian (possibly indefinite).
     virtual void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) = 0;
-    // The exact Hessian appended to h and the projected one minus it appended to
-    // `projection`, which the trust-region iteration needs both of. Objectives override it to
-    // evaluate each stencil once.
-    virtual void hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, Triplets &projection)
+    // The exact Hessian appended to h, and the changes that make the appended triplets the
+    // projected Hessian's appended to `projection` (the trust-region iteration needs both).
+    // The default assembles twice and requires the two lists to have the same structure;
+    // objectives override it to evaluate each stencil once.
+    virtual void hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, TripletChanges &projection)
     {
-      const std::size_t begin = h.size();
+      const std::size_t first = h.size();
       hessian(z, h, false);
-      hessian(z, projection, true);
-      for (std::size_t i = begin; i < h.size(); ++i)
-        projection.emplace_back(h[i].row(), h[i].col(), -h[i].value());
+      Triplets projected;
+      hessian(z, projected, true);
+      if (projected.size() != h.size() - first)
+        throw std::logic_error("hessian_and_projection: the projected Hessian has another structure");
+      for (std::size_t i = 0; i < projected.size(); ++i)
+        {
+          const auto &exact = h[first + i];
+          if (projected[i].row() != exact.row() || projected[i].col() != exact.col())
+            throw std::logic_error("hessian_and_projection: the projected Hessian has another structure");
+          if (projected[i].value() != exact.value())
+            projection.emplace_back(first + i, projected[i].value() - exact.value());
+        }
     }
     // Largest fraction of dz that is certified admissible (intersection-free; 1 without
     // contact).
@@ -165,7 +176,7 @@ namespace ritr
     ReducedSystem  system_;  // keeps its pattern across iterations and solves
     ReducedSystem  exact_system_;  // the exact Hessian of a trust-region iteration
     Triplets       exact_triplets_;  // its entries, kept so that their storage is reused
-    Triplets       projection_triplets_;  // the projected Hessian minus the exact one
+    TripletChanges projection_changes_;  // exact_triplets_ to the projected Hessian's
     SparseCholesky cholesky_;
     double         linear_seconds_ = 0;
   };

@@ -22,16 +22,19 @@ namespace ritr
     void assemble(const Triplets &hessian, const std::vector<int> &free_index,
                   int n_free, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs);
 
-    // The matrix of `base` plus `correction`, whose entries lie in base's pattern (the
-    // projected Hessian as the exact one plus the projection's change on a few stencils).
-    void assemble_sum(const ReducedSystem &base, const Triplets &correction);
+    // The matrix `base` was last assembled to, from the same triplet list with `changes` to
+    // its values (the projected Hessian from the exact one's list).
+    void assemble_changed(const ReducedSystem &base, const TripletChanges &changes);
 
     const Eigen::SparseMatrix<double> &matrix() const { return matrix_; }
 
   private:
-    bool same_structure(const Triplets &hessian, const std::vector<int> &free_index) const;
     void build_pattern(const Triplets &hessian, const std::vector<int> &free_index,
                        int n_free);
+    // Adds the values into their slots; with `check_structure`, false (and a partial sum) as
+    // soon as an entry is not where the pattern expects it.
+    bool fill(const Triplets &hessian, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs,
+              bool check_structure);
 
     Eigen::SparseMatrix<double> matrix_;
     std::vector<int>            rows_, columns_, free_index_;

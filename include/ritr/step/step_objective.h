@@ -31,7 +31,7 @@ namespace ritr
     double value(const Eigen::VectorXd &z) override;
     void   gradient(const Eigen::VectorXd &z, Eigen::VectorXd &g) override;
     void   hessian(const Eigen::VectorXd &z, Triplets &h, bool project) override;
-    void   hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, Triplets &projection) override;
+    void   hessian_and_projection(const Eigen::VectorXd &z, Triplets &h, TripletChanges &projection) override;
     double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) override;
 
   private:

@@ -83,23 +83,20 @@ namespace ritr
     virtual void add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const = 0;
     // A term whose every stencil is PSD in z (inertia, linear terms) has nothing to project.
     virtual bool convex_in_state() const { return false; }
-    // Both Hessians the trust-region Newton uses, in one pass: the exact one into `exact` and
-    // projected minus exact into `projection` (nonzero only on the stencils the projection
-    // changes). The default evaluates the term three times; terms override it to compute
-    // each stencil once.
-    virtual void add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact, Triplets &projection) const
+    // Both Hessians the trust-region Newton uses, in one pass: the exact one into h and the
+    // projection's changes into h's change layer (matrix_assembly.h), only on the stencils the
+    // projection alters. The default assembles the term twice more; terms override it to
+    // compute each stencil once.
+    virtual void add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const
     {
-      add_hessian(p, false, exact);
+      const std::size_t first = h.triplets().size();
+      add_hessian(p, false, h);
       if (convex_in_state())
         return;
-      MatrixAssembly<dim> projected(exact.cells()), plain(exact.cells());
-      add_hessian(p, true, projected);
+      MatrixAssembly<dim> plain(h.cells()), projected(h.cells());
       add_hessian(p, false, plain);
-      const std::size_t begin = projection.size();
-      plain.append_to(projection);
-      for (std::size_t i = begin; i < projection.size(); ++i)
-        projection[i] = Eigen::Triplet<double>(projection[i].row(), projection[i].col(), -projection[i].value());
-      projected.append_to(projection);
+      add_hessian(p, true, projected);
+      h.change_by(plain, projected, first);
     }
     // g_u and H_uu (per `block`); with `coupling` also g_z, H_zz and H_zu. H_zz there is the
     // matrix the reduced Hessian eliminates: exact for cell terms, projected for contact.

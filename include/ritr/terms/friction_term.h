@@ -31,8 +31,7 @@ namespace ritr
     double value(const TermPoint &p) const override;
     void   add_gradient(const TermPoint &p, Eigen::VectorXd &g) const override;
     void   add_hessian(const TermPoint &p, bool project, MatrixAssembly<dim> &h) const override;
-    void   add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &exact,
-                                      Triplets &projection) const override;
+    void   add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const override;
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
 

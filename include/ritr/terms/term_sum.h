@@ -63,9 +63,9 @@ namespace ritr
                                Select select = Select::all) const;
     void   add_energy_hessian(const Eigen::VectorXd &z, const CollisionCandidates &candidates, bool project,
                               MatrixAssembly<dim> &h) const;
-    // The exact Hessian of E and the projected one's difference from it (energy_term.h).
+    // The exact Hessian of E with the projection's changes (energy_term.h).
     void   add_energy_hessian_and_projection(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
-                                             MatrixAssembly<dim> &exact, Triplets &projection) const;
+                                             MatrixAssembly<dim> &h) const;
     // Smallest of the terms' admissible fractions of the step dz.
     double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
 
