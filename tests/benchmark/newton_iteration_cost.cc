@@ -1,9 +1,9 @@
 // One Newton iteration against one CHOLMOD factorization + solve of the same Hessians: on the
-// 2D scale scene (about 100K vertices, contact with the ground) everything a Newton iteration
-// does besides the linear solve (assembly, contact, CCD, the line search or trust region)
-// should cost at most as much as the solve itself, i.e. a ratio <= 2. The contact-heavy
-// 2.7K-vertex bar impact and the 3K-vertex default scene are measured beside it, where the
-// solve is small and the rest of an iteration weighs more.
+// 2D scale scene (about 100K vertices, contact with the ground), the contact-heavy 2.7K-vertex
+// bar impact and the 3K-vertex default scene, everything a Newton iteration does besides the
+// linear solve (assembly, contact, CCD, the trust region) should cost at most half as much as
+// the solve itself, i.e. a ratio <= 1.5. On the small scenes the solve is small and the rest
+// of an iteration weighs more.
 #include <ritr/scene/parameters.h>
 #include <ritr/time/simulation.h>
 
@@ -51,13 +51,13 @@ TEST(NewtonIterationCost, AgainstFactorizationAndSolve)
 {
   std::cout << "| scene | vertices | Newton iterations | factorizations | s per factorization | s per "
                "factorization+solve | ratio |\n| --- | --- | --- | --- | --- | --- | --- |\n";
-  EXPECT_LT(iteration_cost("scale_2d", "prm/benchmark/scale_2d.prm", 2), 2.0);
+  constexpr double goal = 1.5;
+  EXPECT_LT(iteration_cost("scale_2d", "prm/benchmark/scale_2d.prm", 2), goal);
   const double bar = iteration_cost("bar_impact_r2", "prm/paper/bar_impact.prm", 0, [](Scene &s) {
     s.adaptivity.enabled         = false;
     s.bodies[0].geometry.refinements = 2;
   });
   const double ball = iteration_cost("default", "prm/default.prm", 0);
-  // Small meshes: the solve weighs less, and the same goal holds there too.
-  EXPECT_LT(bar, 2.0);
-  EXPECT_LT(ball, 2.0);
+  EXPECT_LT(bar, goal);
+  EXPECT_LT(ball, goal);
 }
