@@ -359,48 +359,77 @@ namespace ritr::contact
     return g;
   }
 
+  namespace
+  {
+    // The local Hessians of the constraints into `exact` and/or `projected` (null: not
+    // wanted), each constraint's entries in the same range of both lists.
+    template <int dim>
+    void barrier_hessians(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V, const double dhat,
+                          const ConstraintWeights &weights, Triplets *exact, Triplets *projected)
+    {
+      const double      dhat_sqr = dhat * dhat;
+      const std::size_t n_c      = constraints.size();
+      // Pass 1: which vertices each constraint involves, hence its number of entries.
+      std::vector<LocalView>   views(n_c);
+      std::vector<std::size_t> offset(n_c + 1, 0);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+          views[i] = local_view<dim>(constraints[i], gather_stencil<dim>(constraints[i], V), dhat_sqr);
+      });
+      for (std::size_t i = 0; i < n_c; ++i)
+        offset[i + 1] = offset[i] + static_cast<std::size_t>(views[i].n * dim * views[i].n * dim);
+
+      // Pass 2: local Hessians written to disjoint ranges.
+      for (Triplets *t : {exact, projected})
+        if (t)
+          t->resize(offset.back());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+          {
+            const Constraint        &c = constraints[i];
+            const LocalView         &v = views[i];
+            const StencilVector<dim> x = gather_stencil<dim>(c, V);
+            const double             w = weights.weight(c);
+            with_local_dual<dim, SecondOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
+              using Matrix     = std::decay_t<decltype(b.hess)>;
+              const Matrix H   = w * b.hess;
+              const auto write = [&](const Matrix &m, Triplets &out) {
+                auto     *entry = &out[offset[i]];
+                const int n     = static_cast<int>(m.rows());
+                for (int r = 0; r < n; ++r)
+                  for (int q = 0; q < n; ++q)
+                    *entry++ = Eigen::Triplet<double>(c.vertices[v.slots[r / dim]] * dim + r % dim,
+                                                      c.vertices[v.slots[q / dim]] * dim + q % dim, m(r, q));
+              };
+              if (exact)
+                write(H, *exact);
+              if (projected)
+                write(project_to_psd(H), *projected);
+            });
+          }
+      });
+    }
+  } // namespace
+
   template <int dim>
   Triplets
   barrier_hessian(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
                   const double dhat, const ConstraintWeights &weights, const bool project_psd)
   {
-    const double dhat_sqr = dhat * dhat;
-    const std::size_t n_c = constraints.size();
-    // Pass 1: which vertices each constraint involves, hence its number of entries.
-    std::vector<LocalView>   views(n_c);
-    std::vector<std::size_t> offset(n_c + 1, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i)
-        views[i] = local_view<dim>(constraints[i], gather_stencil<dim>(constraints[i], V), dhat_sqr);
-    });
-    for (std::size_t i = 0; i < n_c; ++i)
-      offset[i + 1] = offset[i] + static_cast<std::size_t>(views[i].n * dim * views[i].n * dim);
-
-    // Pass 2: local Hessians (projected if asked) written to disjoint ranges.
-    Triplets triplets(offset.back());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_c, grain), [&](const auto &range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i)
-        {
-          const Constraint        &c = constraints[i];
-          const LocalView         &v = views[i];
-          const StencilVector<dim> x = gather_stencil<dim>(c, V);
-          const double             w = weights.weight(c);
-          with_local_dual<dim, SecondOrderDual>(c, x, v, dhat_sqr, [&](const auto &b) {
-            using Matrix = std::decay_t<decltype(b.hess)>;
-            Matrix H     = w * b.hess;
-            if (project_psd)
-              H = project_to_psd(H);
-            auto     *out = &triplets[offset[i]];
-            const int n   = static_cast<int>(H.rows());
-            for (int r = 0; r < n; ++r)
-              for (int q = 0; q < n; ++q)
-                *out++ = Eigen::Triplet<double>(c.vertices[v.slots[r / dim]] * dim + r % dim,
-                                                c.vertices[v.slots[q / dim]] * dim + q % dim,
-                                                H(r, q));
-          });
-        }
-    });
+    Triplets triplets;
+    barrier_hessians<dim>(constraints, V, dhat, weights, project_psd ? nullptr : &triplets,
+                          project_psd ? &triplets : nullptr);
     return triplets;
+  }
+
+  template <int dim>
+  std::pair<Triplets, Triplets>
+  barrier_hessian_and_projection(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
+                                 const double dhat, const ConstraintWeights &weights)
+  {
+    std::pair<Triplets, Triplets> hessians;
+    barrier_hessians<dim>(constraints, V, dhat, weights, &hessians.first, &hessians.second);
+    return hessians;
   }
 
   template <int dim>
@@ -500,6 +529,8 @@ namespace ritr::contact
   template Triplets barrier_hessian<dim>(                           \
     const std::vector<Constraint> &, const Eigen::MatrixXd &, double,                          \
     const ConstraintWeights &, bool);                                                          \
+  template std::pair<Triplets, Triplets> barrier_hessian_and_projection<dim>(                  \
+    const std::vector<Constraint> &, const Eigen::MatrixXd &, double, const ConstraintWeights &); \
   template std::vector<BarrierTerm> unweighted_barrier_terms<dim>(                             \
     const std::vector<Constraint> &, const Eigen::MatrixXd &, double);                         \
   template double minimum_distance<dim>(const std::vector<Constraint> &,                       \

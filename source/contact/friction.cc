@@ -283,52 +283,77 @@ namespace ritr::contact
       }
   }
 
-  template <int dim>
-  Triplets
-  friction_hessian(const std::vector<FrictionConstraint<dim>> &friction, const Eigen::MatrixXd &V,
-                   const Eigen::MatrixXd &V_start, const double eps, const bool project_psd)
+  namespace
   {
-    if constexpr (dim == 1)
-      {
-        (void)friction, (void)V, (void)V_start, (void)eps, (void)project_psd;
-        return {};
-      }
-    else
-      {
-        check_eps(eps);
-        std::vector<std::size_t> offset(friction.size() + 1, 0);
-        for (std::size_t i = 0; i < friction.size(); ++i)
-          offset[i + 1] = offset[i] + static_cast<std::size_t>(friction[i].n_vertices *
-                                                               friction[i].n_vertices * dim * dim);
-        Triplets triplets(offset.back());
-        tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, friction.size(), 256), [&](const auto &range) {
+    // The constraints' Hessians into `exact` and/or `projected` (null: not wanted), each
+    // constraint's entries in the same range of both lists.
+    template <int dim>
+    void friction_hessians(const std::vector<FrictionConstraint<dim>> &friction, const Eigen::MatrixXd &V,
+                           const Eigen::MatrixXd &V_start, const double eps, Triplets *exact, Triplets *projected)
+    {
+      if constexpr (dim == 1)
+        (void)friction, (void)V, (void)V_start, (void)eps, (void)exact, (void)projected;
+      else
+        {
+          check_eps(eps);
+          std::vector<std::size_t> offset(friction.size() + 1, 0);
+          for (std::size_t i = 0; i < friction.size(); ++i)
+            offset[i + 1] =
+              offset[i] + static_cast<std::size_t>(friction[i].n_vertices * friction[i].n_vertices * dim * dim);
+          for (Triplets *t : {exact, projected})
+            if (t)
+              t->resize(offset.back());
+          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, friction.size(), 256), [&](const auto &range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)
               {
                 const auto  &fc = friction[i];
                 const auto   u  = tangential_displacement<dim>(fc, V, V_start);
                 const double y  = u.norm();
-                Eigen::Matrix<double, dim - 1, dim - 1> M =
-                  friction_f1_over_y(y, eps) * Eigen::Matrix<double, dim - 1, dim - 1>::Identity() +
-                  friction_f2_term(y, eps) * u * u.transpose();
-                if (project_psd)
-                  M = project_to_psd(M);
-                const Eigen::Matrix<double, dim, dim> A =
-                  fc.mu * fc.normal_force * fc.basis * M * fc.basis.transpose();
-                auto *out = &triplets[offset[i]];
-                for (int a = 0; a < fc.n_vertices; ++a)
-                  for (int b = 0; b < fc.n_vertices; ++b)
-                    {
-                      const double cab = fc.coefficients[a] * fc.coefficients[b];
-                      for (int k = 0; k < dim; ++k)
-                        for (int l = 0; l < dim; ++l)
-                          *out++ = Eigen::Triplet<double>(fc.vertices[a] * dim + k,
-                                                          fc.vertices[b] * dim + l, cab * A(k, l));
-                    }
+                using Tangential = Eigen::Matrix<double, dim - 1, dim - 1>;
+                const Tangential M = friction_f1_over_y(y, eps) * Tangential::Identity() +
+                                     friction_f2_term(y, eps) * u * u.transpose();
+                const auto write = [&](const Tangential &m, Triplets &out) {
+                  const Eigen::Matrix<double, dim, dim> A = fc.mu * fc.normal_force * fc.basis * m * fc.basis.transpose();
+                  auto *entry = &out[offset[i]];
+                  for (int a = 0; a < fc.n_vertices; ++a)
+                    for (int b = 0; b < fc.n_vertices; ++b)
+                      {
+                        const double cab = fc.coefficients[a] * fc.coefficients[b];
+                        for (int k = 0; k < dim; ++k)
+                          for (int l = 0; l < dim; ++l)
+                            *entry++ = Eigen::Triplet<double>(fc.vertices[a] * dim + k, fc.vertices[b] * dim + l,
+                                                              cab * A(k, l));
+                      }
+                };
+                if (exact)
+                  write(M, *exact);
+                if (projected)
+                  write(project_to_psd(M), *projected);
               }
           });
-        return triplets;
-      }
+        }
+    }
+  } // namespace
+
+  template <int dim>
+  Triplets
+  friction_hessian(const std::vector<FrictionConstraint<dim>> &friction, const Eigen::MatrixXd &V,
+                   const Eigen::MatrixXd &V_start, const double eps, const bool project_psd)
+  {
+    Triplets triplets;
+    friction_hessians<dim>(friction, V, V_start, eps, project_psd ? nullptr : &triplets,
+                           project_psd ? &triplets : nullptr);
+    return triplets;
+  }
+
+  template <int dim>
+  std::pair<Triplets, Triplets>
+  friction_hessian_and_projection(const std::vector<FrictionConstraint<dim>> &friction, const Eigen::MatrixXd &V,
+                                  const Eigen::MatrixXd &V_start, const double eps)
+  {
+    std::pair<Triplets, Triplets> hessians;
+    friction_hessians<dim>(friction, V, V_start, eps, &hessians.first, &hessians.second);
+    return hessians;
   }
 
 #define RITR_INSTANTIATE(dim)                                                                    \
@@ -343,7 +368,9 @@ namespace ritr::contact
                                                   const Eigen::MatrixXd &, double);            \
   template Triplets friction_hessian<dim>(                          \
     const std::vector<FrictionConstraint<dim>> &, const Eigen::MatrixXd &,                     \
-    const Eigen::MatrixXd &, double, bool);
+    const Eigen::MatrixXd &, double, bool);                                                    \
+  template std::pair<Triplets, Triplets> friction_hessian_and_projection<dim>(                 \
+    const std::vector<FrictionConstraint<dim>> &, const Eigen::MatrixXd &, const Eigen::MatrixXd &, double);
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)

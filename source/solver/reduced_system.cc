@@ -29,6 +29,7 @@ namespace ritr
     matrix_.setFromTriplets(lower.begin(), lower.end());
     matrix_.makeCompressed();
     slot_.resize(hessian.size());
+    coupled_.clear();
     const int *outer = matrix_.outerIndexPtr(), *inner = matrix_.innerIndexPtr();
     for (std::size_t i = 0; i < hessian.size(); ++i)
       {
@@ -37,6 +38,8 @@ namespace ritr
           slot_[i] = r >= c ? static_cast<int>(std::lower_bound(inner + outer[c], inner + outer[c + 1], r) - inner) : -1;
         else
           slot_[i] = r >= 0 ? -2 - r : -1;
+        if (slot_[i] <= -2)
+          coupled_.push_back(i);
       }
   }
 
@@ -45,19 +48,17 @@ namespace ritr
   {
     // The structure is checked while the values are added (one pass over the list); on a
     // change the pattern is rebuilt and the values added again.
-    if (hessian.size() == rows_.size() && free_index == free_index_)
+    const bool same = hessian.size() == rows_.size() && free_index == free_index_ && fill(hessian, true);
+    if (!same)
       {
-        const Eigen::VectorXd rhs_in = rhs;
-        if (fill(hessian, prescribed_step, rhs, true))
-          return;
-        rhs = rhs_in;
+        build_pattern(hessian, free_index, n_free);
+        fill(hessian, false);
       }
-    build_pattern(hessian, free_index, n_free);
-    fill(hessian, prescribed_step, rhs, false);
+    for (const std::size_t i : coupled_)
+      rhs[-2 - slot_[i]] -= hessian[i].value() * prescribed_step[columns_[i]];
   }
 
-  bool ReducedSystem::fill(const Triplets &hessian, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs,
-                           const bool check_structure)
+  bool ReducedSystem::fill(const Triplets &hessian, const bool check_structure)
   {
     double *values = matrix_.valuePtr();
     std::fill(values, values + matrix_.nonZeros(), 0.0);
@@ -65,11 +66,8 @@ namespace ritr
       {
         if (check_structure && (hessian[i].row() != rows_[i] || hessian[i].col() != columns_[i]))
           return false;
-        const int s = slot_[i];
-        if (s >= 0)
+        if (const int s = slot_[i]; s >= 0)
           values[s] += hessian[i].value();
-        else if (s <= -2)
-          rhs[-2 - s] -= hessian[i].value() * prescribed_step[columns_[i]];
       }
     return true;
   }
@@ -80,6 +78,7 @@ namespace ritr
     free_index_ = base.free_index_;
     rows_.clear();  // not assembled from a triplet list of its own
     columns_.clear();
+    coupled_.clear();
     double *values = matrix_.valuePtr();
     for (const auto &[position, value] : changes)
       if (const int s = base.slot_[position]; s >= 0)

@@ -69,13 +69,11 @@ namespace ritr
   {
     const Eigen::MatrixXd V           = collisions_.vertices(p.z);
     const auto            constraints = collisions_.active_constraints(V, p.candidates);
-    const auto hessian = [&](const bool project) {
-      return contact::barrier_hessian<dim>(constraints, V, collisions_.dhat(), collisions_.weights(), project);
-    };
-    const Triplets    plain = hessian(false);
+    const auto [exact, projected] =
+      contact::barrier_hessian_and_projection<dim>(constraints, V, collisions_.dhat(), collisions_.weights());
     const std::size_t first = h.triplets().size();
-    collisions_.scatter_hessian(plain, kappa_, h.triplets());  // one triplet per stencil entry, in order
-    h.change_triplets(first, plain, hessian(true), kappa_);
+    collisions_.scatter_hessian(exact, kappa_, h.triplets());  // one triplet per stencil entry, in order
+    h.change_triplets(first, exact, projected, kappa_);
   }
 
   template <int dim>

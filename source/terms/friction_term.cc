@@ -66,14 +66,11 @@ namespace ritr
   {
     if (friction_.empty())
       return;
-    const Eigen::MatrixXd V       = collisions_.vertices(p.z);
-    const auto            hessian = [&](const bool project) {
-      return contact::friction_hessian<dim>(friction_, V, start_, epsilon_v_times_h_, project);
-    };
-    const Triplets    plain = hessian(false);
+    const auto [exact, projected] =
+      contact::friction_hessian_and_projection<dim>(friction_, collisions_.vertices(p.z), start_, epsilon_v_times_h_);
     const std::size_t first = h.triplets().size();
-    collisions_.scatter_hessian(plain, 1.0, h.triplets());  // one triplet per stencil entry, in order
-    h.change_triplets(first, plain, hessian(true), 1.0);
+    collisions_.scatter_hessian(exact, 1.0, h.triplets());  // one triplet per stencil entry, in order
+    h.change_triplets(first, exact, projected, 1.0);
   }
 
   template <int dim>

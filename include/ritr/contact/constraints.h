@@ -18,6 +18,7 @@
 #include <Eigen/SparseCore>
 
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace ritr::contact
@@ -102,6 +103,12 @@ namespace ritr::contact
   Triplets
   barrier_hessian(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
                   double dhat, const ConstraintWeights &weights, bool project_psd = true);
+  // Both at once from one evaluation of each local Hessian: the exact one and the projected
+  // one, entry for entry in the same order.
+  template <int dim>
+  std::pair<Triplets, Triplets>
+  barrier_hessian_and_projection(const std::vector<Constraint> &constraints, const Eigen::MatrixXd &V,
+                                 double dhat, const ConstraintWeights &weights);
 
   // Unweighted barrier of one constraint (m b, including the mollifier) and its gradient
   // w.r.t. the constraint's stencil positions (constraint.vertices order, n_vertices*dim

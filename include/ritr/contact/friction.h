@@ -78,4 +78,9 @@ namespace ritr::contact
   friction_hessian(const std::vector<FrictionConstraint<dim>> &friction,
                    const Eigen::MatrixXd &V, const Eigen::MatrixXd &V_start,
                    double epsilon_v_times_h, bool project_psd = true);
+  // Both at once: the exact Hessian and the projected one, entry for entry in the same order.
+  template <int dim>
+  std::pair<Triplets, Triplets>
+  friction_hessian_and_projection(const std::vector<FrictionConstraint<dim>> &friction, const Eigen::MatrixXd &V,
+                                  const Eigen::MatrixXd &V_start, double epsilon_v_times_h);
 } // namespace ritr::contact

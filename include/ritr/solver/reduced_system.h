@@ -31,15 +31,15 @@ namespace ritr
   private:
     void build_pattern(const Triplets &hessian, const std::vector<int> &free_index,
                        int n_free);
-    // Adds the values into their slots; with `check_structure`, false (and a partial sum) as
-    // soon as an entry is not where the pattern expects it.
-    bool fill(const Triplets &hessian, const Eigen::VectorXd &prescribed_step, Eigen::VectorXd &rhs,
-              bool check_structure);
+    // Adds the free-free values into their slots; with `check_structure`, false (and a
+    // partial sum) as soon as an entry is not where the pattern expects it.
+    bool fill(const Triplets &hessian, bool check_structure);
 
     Eigen::SparseMatrix<double> matrix_;
     std::vector<int>            rows_, columns_, free_index_;
     // Per triplet: >= 0 its slot in matrix_.valuePtr(); -1 not used (upper triangle or a
     // prescribed row); <= -2 a free row -2 - slot coupled to a prescribed column.
-    std::vector<int> slot_;
+    std::vector<int>         slot_;
+    std::vector<std::size_t> coupled_;  // the triplets whose slot is <= -2
   };
 } // namespace ritr
