@@ -1,18 +1,20 @@
 #!/usr/bin/python3
 """The r-ITR outer solve, compared across outer Hessians and tolerances on one scene.
 
-    scripts/outer_solve.py SCENE.prm --ritr build/ritr [--hessian truncated reduced]
+    scripts/outer_solve.py SCENE.prm --ritr build/ritr [--hessian truncated reduced/exact ...]
                            [--epsilon 1e-4 1e-6] [--end-time T] [--work DIR]
 
-For every (epsilon r, hessian) pair the scene runs once, in turn, in its own process; at
+A variant is an outer Hessian, optionally with the transfer's integration after a slash
+(reduced/quadrature, reduced/exact; without one, the scene's). For every (epsilon r, variant)
+pair the scene runs once, in turn, in its own process; at
 epsilon r below 1e-5 the outer iteration limit is raised to 200. From each log.csv: why each
 step's outer iteration ended (the outer_stop column), the mean outer iterations, the inner
 Newton iterations and trials, the total decrease of R over the steps (sum of
 initial_objective - energy), the wall time of the steps and the time of an r-ITR step over a
 step of the same scene on its fixed mesh (run first). Later steps of different runs start
 from different states, so the decrease of R is a sum of per-step gains, comparable between the
-runs of one table. Ratios are taken within one epsilon r against the first hessian named. The
-exit code is 1 if a run failed, or with --require-converging HESSIAN if a run of HESSIAN at
+runs of one table. Ratios are taken within one epsilon r against the first variant named. The
+exit code is 1 if a run failed, or with --require-converging VARIANT if a run of VARIANT at
 epsilon r below 1e-5 left a step on the iteration limit.
 """
 import argparse
@@ -52,8 +54,8 @@ def main():
     parser.add_argument("--epsilon", nargs="+", default=["1e-4", "1e-6"])
     parser.add_argument("--end-time")
     parser.add_argument("--work", default=None)
-    parser.add_argument("--require-converging", metavar="HESSIAN",
-                        help="exit 1 if a run of HESSIAN at epsilon r below 1e-5 leaves a step on the iteration limit")
+    parser.add_argument("--require-converging", metavar="VARIANT",
+                        help="exit 1 if a run of VARIANT at epsilon r below 1e-5 leaves a step on the iteration limit")
     args = parser.parse_args()
     work = args.work or tempfile.mkdtemp(prefix="outer_solve_")
     os.makedirs(work, exist_ok=True)
@@ -72,17 +74,20 @@ def main():
     fixed_rows = list(csv.DictReader(open(os.path.join(work, "fixed", "log.csv"))))
     fixed_step = sum(float(r["wall_seconds"]) for r in fixed_rows) / max(len(fixed_rows), 1)
     print(f"fixed mesh: {len(fixed_rows)} steps, {fixed_step:.4f} s per step")
-    print(f"{'epsilon r':>9} {'hessian':>10} {'steps':>5} {'converged':>9} {'small dec.':>10} {'no decr.':>8} {'at limit':>8} "
+    print(f"{'epsilon r':>9} {'variant':>18} {'steps':>5} {'converged':>9} {'small dec.':>10} {'no decr.':>8} {'at limit':>8} "
           f"{'outer/step':>10} {'inner':>7} "
           f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'step/fixed':>10} {'wall ratio':>10} {'decrease ratio':>14}")
     for epsilon in args.epsilon:
         base = None
-        for hessian in args.hessian:
-            name = f"{hessian}_{epsilon}"
+        for variant in args.hessian:
+            hessian, _, integration = variant.partition("/")
+            name = f"{variant.replace('/', '_')}_{epsilon}"
             limit = 200 if float(epsilon) < 1e-5 else None
             overrides = {"output directory": os.path.join(work, name), "output every": "1000000",
                          "Adaptivity/enabled": "true", "Adaptivity/hessian": hessian,
                          "Adaptivity/epsilon r": epsilon}
+            if integration:
+                overrides["Adaptivity/transfer integration"] = integration
             if limit:
                 overrides["Adaptivity/max iterations"] = str(limit)
             if args.end_time:
@@ -93,13 +98,13 @@ def main():
                 code = subprocess.call([args.ritr, prm], stdout=log, stderr=subprocess.STDOUT)
             if code != 0:
                 failed = True
-                print(f"{epsilon:>9} {hessian:>10} failed with exit code {code}")
+                print(f"{epsilon:>9} {variant:>18} failed with exit code {code}")
                 continue
             s = summarize(os.path.join(work, name, "log.csv"))
-            if hessian == args.require_converging and limit and s["at_limit"] > 0:
+            if variant == args.require_converging and limit and s["at_limit"] > 0:
                 failed = True
             base = base or s
-            print(f"{epsilon:>9} {hessian:>10} {s['steps']:>5} {s['converged']:>9} {s['small_decrease']:>10} {s['no_decrease']:>8} "
+            print(f"{epsilon:>9} {variant:>18} {s['steps']:>5} {s['converged']:>9} {s['small_decrease']:>10} {s['no_decrease']:>8} "
                   f"{s['at_limit']:>8} {s['mean_outer']:>10.1f} "
                   f"{s['inner']:>7} {s['trials']:>6} {s['decrease']:>11.3e} {s['wall']:>8.1f} "
                   f"{s['wall'] / s['steps'] / fixed_step:>10.1f} "

@@ -21,4 +21,9 @@ namespace ritr
   {
     return value_named(admissibility_names, name, "admissibility");
   }
+
+  TransferIntegrationChoice transfer_integration_from(const std::string &name)
+  {
+    return value_named(transfer_integration_names, name, "transfer integration");
+  }
 } // namespace ritr

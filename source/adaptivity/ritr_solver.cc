@@ -36,7 +36,7 @@ namespace ritr
     , settings_(settings)
     , measure_barrier_(*inner.terms().template find<MeasureBarrierTerm<dim>>())
     , inertia_(inner.terms().template find<TransferredInertiaTerm<dim>>())
-    , velocity_transfer_(materials.mesh().cells, quadrature)
+    , velocity_transfer_(materials.mesh().cells, quadrature, settings.transfer_integration)
     , sliding_(classify_sliding(materials.mesh(), settings.sliding_tolerance))
     , w_hat_(measure_barrier_.threshold())
     , youngs_modulus_(materials.of_cell(0).youngs_modulus)

@@ -26,6 +26,24 @@ namespace ritr
   }
 
   template <int dim>
+  transfer::TransferIntegration Problem<dim>::transfer_integration() const
+  {
+    switch (scene.adaptivity.transfer_integration)
+      {
+        case TransferIntegrationChoice::exact:
+          if (dim != 2)
+            throw InputError(scene.where("Adaptivity/transfer integration") +
+                             ": exact is implemented for triangles (2D) only");
+          return transfer::TransferIntegration::exact;
+        case TransferIntegrationChoice::quadrature:
+          return transfer::TransferIntegration::quadrature;
+        case TransferIntegrationChoice::automatic:
+        default:
+          return dim == 2 ? transfer::TransferIntegration::exact : transfer::TransferIntegration::quadrature;
+      }
+  }
+
+  template <int dim>
   void Problem<dim>::build_terms()
   {
     const AdaptivityScene &adaptivity = scene.adaptivity;
@@ -36,7 +54,8 @@ namespace ritr
         if (adaptivity.enabled && adaptivity.projection == PredictorProjection::in_optimization)
           try
             {
-              terms->template add<TransferredInertiaTerm<dim>>(*materials, transfer_quadrature(), adaptivity.inertia);
+              terms->template add<TransferredInertiaTerm<dim>>(*materials, transfer_quadrature(), adaptivity.inertia,
+                                                               transfer_integration());
             }
           catch (const std::invalid_argument &e)
             {
@@ -62,6 +81,7 @@ namespace ritr
 
 #define RITR_INSTANTIATE(dim)                                                                                          \
   template SimplexQuadrature<dim> Problem<dim>::transfer_quadrature() const;                                           \
+  template transfer::TransferIntegration Problem<dim>::transfer_integration() const;                                   \
   template void                   Problem<dim>::build_terms();
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)

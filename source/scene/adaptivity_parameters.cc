@@ -18,6 +18,7 @@ namespace ritr
     prm.declare_entry("admissibility", name_of(admissibility_names, d.admissibility), Patterns::Selection(selection(admissibility_names)), "geometric: boundary sliding, measure barrier and step filter; physical: x = argmin E(., u) at every mesh (without it x and u are minimised jointly; no contact). Ablation switch of paper Fig. 8.");
     prm.declare_entry("measure barrier stiffness", prm_value(d.measure_barrier_stiffness), Patterns::Double(0), "Stiffness of the reference area/volume barrier (eq. 21); 0: the contact barrier's stiffness, or (h^2) E / w_hat without contact.");
     prm.declare_entry("quadrature subdivisions", prm_value(d.quadrature_subdivisions), Patterns::Integer(0), "Transfer quadrature on each candidate cell: the Witherden-Vincent rule of 5 points per direction, repeated on n^dim sub-cells (the predictor has kinks inside candidate cells, and the outer solve exploits quadrature error). 0: 64 for rods, 1 for triangles and tetrahedra.");
+    prm.declare_entry("transfer integration", name_of(transfer_integration_names, d.transfer_integration), Patterns::Selection(selection(transfer_integration_names)), "How the L2 transfer of the predictor is integrated. exact: on the intersection of the candidate and the old mesh (triangles only), so that R is C1 in the reference positions; quadrature: the paper's fixed rule on each candidate cell (see quadrature subdivisions), whose gradient jumps wherever a point crosses an old edge. auto: exact for triangles, quadrature for rods and tetrahedra.");
     prm.declare_entry("epsilon r", prm_value(d.epsilon_r), Patterns::Double(0), "Outer tolerance on |du|_inf relative to the mesh's bounding-box diagonal; smaller adapts more.");
     prm.declare_entry("sliding tolerance", prm_value(d.sliding_tolerance), Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
     prm.declare_entry("decrease tolerance", prm_value(d.decrease_tolerance), Patterns::Double(0), "hessian = reduced: a step also ends (outer_stop small_decrease) once the model predicts a decrease of R below this fraction of the decrease the step has already made; 0: the square root of epsilon r (1e-2 for 1e-4), so that epsilon r stays the one knob.");
@@ -36,6 +37,7 @@ namespace ritr
     admissibility             = admissibility_from(prm.get("admissibility"));
     measure_barrier_stiffness = prm.get_double("measure barrier stiffness");
     quadrature_subdivisions   = prm.get_integer("quadrature subdivisions");
+    transfer_integration      = transfer_integration_from(prm.get("transfer integration"));
     epsilon_r                 = prm.get_double("epsilon r");
     decrease_tolerance        = prm.get_double("decrease tolerance");
     sliding_tolerance         = prm.get_double("sliding tolerance");

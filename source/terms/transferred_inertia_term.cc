@@ -9,9 +9,10 @@ namespace ritr
 {
   template <int dim>
   TransferredInertiaTerm<dim>::TransferredInertiaTerm(const CellMaterials<dim>     &materials,
-                                                      const SimplexQuadrature<dim> &quadrature, const InertiaForm form)
+                                                      const SimplexQuadrature<dim> &quadrature, const InertiaForm form,
+                                                      const transfer::TransferIntegration integration)
     : mass_(materials, InertiaTerm<dim>::Predictor::none, InertiaForm::corrected)
-    , transfer_(materials.mesh().cells, quadrature)
+    , transfer_(materials.mesh().cells, quadrature, integration)
     , form_(form)
   {
     // The transfer term rho x^T A_t y assumes one density (paper eq. 20).
@@ -31,6 +32,7 @@ namespace ritr
       return;
     ScopedTimer timer(seconds_);
     transfer_.set_old_mesh(context.u_start);
+    reference_.resize(0);
   }
 
   template <int dim>
@@ -38,6 +40,10 @@ namespace ritr
   {
     if (!active_)
       return;
+    // The outer solve sets the same mesh several times (its inner solve, R, the derivatives).
+    if (reference_.size() == u.size() && reference_ == u)
+      return;
+    reference_ = u;
     ScopedTimer timer(seconds_);
     transfer_.set_candidate(u);
     linear_ = -density_ * transfer_.gradient_x(predictor_);
@@ -84,16 +90,10 @@ namespace ritr
     mass_.add_reference_derivatives(p, block, coupling, d);
     ScopedTimer           timer(seconds_);
     const Eigen::VectorXd x = p.x();
-    d.gu -= density_ * transfer_.gradient_u(x, predictor_);
-    if (block == ReferenceBlock::following)
-      transfer_.add_hessian_following(x, predictor_, -density_, false, d.huu.triplets());
-    else
-      transfer_.add_hessian_u(x, predictor_, -density_, false, d.huu.triplets());
+    transfer_.add_reference_derivatives(x, predictor_, -density_, block == ReferenceBlock::following, d.gu,
+                                        d.huu.triplets(), coupling ? &d.hxu.triplets() : nullptr);
     if (coupling)
-      {
-        d.gx.head(x.size()) += linear_;
-        transfer_.add_hessian_xu(x, predictor_, -density_, d.hxu.triplets());
-      }
+      d.gx.head(x.size()) += linear_;
     if (!adds_projected_predictor())
       return;
     // 1/2 rho pi^T Mbar pi = max_p g(p, u), g = rho p^T A y - 1/2 p^T M p: by the envelope

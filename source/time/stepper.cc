@@ -100,6 +100,7 @@ namespace ritr
     settings.max_outer_iterations      = a.max_iterations;
     settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
     settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
+    settings.transfer_integration      = problem.transfer_integration();
     // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
     settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);
     return settings;

@@ -2,10 +2,9 @@
 #include <ritr/common/small_matrix.h>
 #include <ritr/transfer/transfer_operator.h>
 
-#include <Eigen/SparseCholesky>
+#include "transfer_cells.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <stdexcept>
@@ -13,26 +12,10 @@
 
 namespace ritr::transfer
 {
+  using namespace cells;
+
   namespace
   {
-    template <int dim>
-    using CellVector = Eigen::Matrix<double, dim *(dim + 1), 1>;
-    template <int dim>
-    using CellMatrix = Eigen::Matrix<double, dim *(dim + 1), dim *(dim + 1)>;
-
-    constexpr std::size_t grain_size = 64;
-
-    // Runs f(c) for every cell in parallel; each cell writes only its own output slots.
-    template <typename F>
-    void for_each_cell(const std::size_t n_cells, F &&f)
-    {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_cells, grain_size),
-                        [&](const tbb::blocked_range<std::size_t> &range) {
-                          for (std::size_t c = range.begin(); c != range.end(); ++c)
-                            f(c);
-                        });
-    }
-
     constexpr int levi_civita(const int i, const int j) { return i == j ? 0 : (i < j ? 1 : -1); }
     constexpr int levi_civita(const int i, const int j, const int k)
     {
@@ -123,37 +106,17 @@ namespace ritr::transfer
       return det;
     }
 
-    template <int dim>
-    Eigen::Matrix<double, dim, dim + 1> gather(const Eigen::VectorXd                    &v,
-                                               const std::array<unsigned int, dim + 1> &cell)
-    {
-      Eigen::Matrix<double, dim, dim + 1> m;
-      for (int a = 0; a <= dim; ++a)
-        m.col(a) = v.template segment<dim>(std::size_t(cell[a]) * dim);
-      return m;
-    }
   } // namespace
 
-  template <int dim>
-  struct TransferOperator<dim>::OldField
-  {
-    Eigen::Matrix<double, dim, dim, Eigen::DontAlign> K;
-    Eigen::Matrix<double, dim, 1, Eigen::DontAlign>   k;
-  };
 
   template <int dim>
-  struct TransferOperator<dim>::CellTerms
-  {
-    double          value = 0;
-    CellVector<dim> grad_u, grad_x;
-    CellMatrix<dim> hess_u, mixed;
-  };
-
-  template <int dim>
-  TransferOperator<dim>::TransferOperator(std::vector<Cell> cells, SimplexQuadrature<dim> quadrature)
-    : cells_(std::move(cells)), quadrature_(std::move(quadrature))
+  TransferOperator<dim>::TransferOperator(std::vector<Cell> cells, SimplexQuadrature<dim> quadrature,
+                                          const TransferIntegration integration)
+    : cells_(std::move(cells)), quadrature_(std::move(quadrature)), integration_(integration)
   {
     check_rule(quadrature_);
+    if (integration_ == TransferIntegration::exact && dim != 2)
+      throw std::invalid_argument("exact transfer integration is implemented for triangles only");
   }
 
   template <int dim>
@@ -191,6 +154,14 @@ namespace ritr::transfer
       throw std::logic_error("TransferOperator::set_candidate: call set_old_mesh first");
     check_field(u, "u");
     u_ = u;
+    if (integration_ == TransferIntegration::exact)
+      {
+        find_overlaps();
+        located_.clear();
+        n_outside_     = 0;
+        has_candidate_ = true;
+        return;
+      }
     const std::size_t n_q = quadrature_.size();
     located_.assign(cells_.size() * n_q, -1);
     std::vector<unsigned int> n_distinct(cells_.size()), n_out(cells_.size());
@@ -233,6 +204,8 @@ namespace ritr::transfer
   typename TransferOperator<dim>::SparseMatrix TransferOperator<dim>::transfer_matrix() const
   {
     check_ready("transfer_matrix");
+    if (integration_ == TransferIntegration::exact)
+      return exact_transfer_matrix();
     constexpr int            block = (dim + 1) * (dim + 1);
     const std::size_t        n_q   = quadrature_.size();
     std::vector<Triplet>     triplets(block_offsets_.back() * block);
@@ -313,6 +286,14 @@ namespace ritr::transfer
   void TransferOperator<dim>::cell_terms(const unsigned int c, const Eigen::VectorXd *x,
                                          const std::vector<OldField> &field, CellTerms &terms) const
   {
+    if (integration_ == TransferIntegration::exact)
+      {
+        if constexpr (grad_u || hess_u || mixed)
+          exact_cell_derivatives(c, *x, field, terms);
+        else
+          exact_cell_values(c, x, field, terms);
+        return;
+      }
     constexpr bool need_s  = value || grad_u || hess_u;
     constexpr bool need_dJ = grad_u || hess_u || mixed;
 
@@ -471,6 +452,33 @@ namespace ritr::transfer
       CellMatrix<dim> H = scale * terms.hess_u;
       return project_psd ? CellMatrix<dim>(project_to_psd(H)) : H;
     });
+  }
+
+  template <int dim>
+  void TransferOperator<dim>::add_reference_derivatives(const Eigen::VectorXd &x, const Eigen::VectorXd &y,
+                                                        const double scale, const bool following, Eigen::VectorXd &gu,
+                                                        std::vector<Triplet> &huu, std::vector<Triplet> *hxu) const
+  {
+    check_ready("add_reference_derivatives");
+    check_field(x, "x");
+    const auto             field = old_field(y);
+    std::vector<CellTerms> terms(cells_.size());
+    std::vector<double>    local(cells_.size() * n_cell_dofs);
+    for_each_cell(cells_.size(), [&](const std::size_t c) {
+      cell_terms<false, true, true, false, true>(c, &x, field, terms[c]);
+      for (int i = 0; i < n_cell_dofs; ++i)
+        local[c * n_cell_dofs + i] = scale * terms[c].grad_u[i];
+    });
+    gu += scatter_cell_vectors(local);
+    append_cell_blocks(huu, [&](const std::size_t c) {
+      const CellTerms &t = terms[c];
+      CellMatrix<dim>  H = scale * t.hess_u;
+      if (following)
+        H += scale * (t.mixed + t.mixed.transpose());
+      return H;
+    });
+    if (hxu)
+      append_cell_blocks(*hxu, [&](const std::size_t c) { return CellMatrix<dim>(scale * terms[c].mixed); });
   }
 
   template <int dim>

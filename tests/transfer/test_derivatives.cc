@@ -13,6 +13,7 @@
 #include <ritr/common/second_order_dual.h>
 #include <ritr/common/small_matrix.h>
 #include <ritr/transfer/transfer_operator.h>
+#include <ritr/transfer/triangle_overlap.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -121,6 +122,134 @@ namespace
       }
     EXPECT_LT(relative_error(gx, Ay), 1e-13);
     EXPECT_NEAR(op.value(x, y), x.dot(gx), 1e-13 * std::abs(op.value(x, y)));
+  }
+
+  // Exact integration on the overlap polygons: A_t is C1 in u wherever the candidate stays
+  // in the old domain, so every component of the derivatives is checked (no frozen
+  // assignment, nothing skipped) except moves of nodes on a box face normal to it, which
+  // r-ITR never makes: the part of a cell pushed outside the old domain is left out, and the
+  // one-sided derivatives differ there. Where candidate nodes or edges lie on old ones
+  // (`ties`), the second derivatives jump: the Hessian is then the limit of the one on the
+  // old mesh shifted by -delta d (triangle_overlap.h), checked against that mesh's.
+  void check_exact_finite_differences(const Scenario<2> &s, const bool ties = false)
+  {
+    ASSERT_GT(min_measure(s.mesh, s.u), 0);
+    TransferOperator<2> op(s.mesh.cells, degree_two_rule<2>(), TransferIntegration::exact);
+    op.set_old_mesh(s.u_old);
+    const Eigen::Index    n = s.u.size();
+    const Eigen::VectorXd x = random_field(n, 71) + s.u;
+    const Eigen::VectorXd y = random_field(n, 72) + s.u_old;
+    const double          step = 1e-6 * s.mesh.spacing();
+    op.set_candidate(s.u);
+    const Eigen::VectorXd g   = op.gradient_u(x, y);
+    const Eigen::MatrixXd H   = Eigen::MatrixXd(op.hessian_u(x, y));
+    const Eigen::MatrixXd Hxu = Eigen::MatrixXd(op.hessian_xu(x, y));
+    Eigen::MatrixXd       fg(1, n), fH(n, n), fHxu(n, n);
+    Eigen::VectorXd       v      = s.u;
+    int                   n_kept = 0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      {
+        const bool normal_move = on_boundary(s.mesh.nodes[j]) && s.u[j] == s.u_old[j];
+        if (normal_move)
+          {
+            fg.col(j).setConstant(std::nan(""));
+            fH.col(j).setConstant(std::nan(""));
+            fHxu.col(j).setConstant(std::nan(""));
+            continue;
+          }
+        ++n_kept;
+        std::array<double, 2>          values;
+        std::array<Eigen::VectorXd, 2> gradients, state_gradients;
+        for (int side = 0; side < 2; ++side)
+          {
+            v[j] = s.u[j] + (side == 0 ? step : -step);
+            op.set_candidate(v);
+            values[side]          = op.value(x, y);
+            gradients[side]       = op.gradient_u(x, y);
+            state_gradients[side] = op.gradient_x(y);
+          }
+        v[j]         = s.u[j];
+        fg(0, j)     = (values[0] - values[1]) / (2 * step);
+        fH.col(j)    = (gradients[0] - gradients[1]) / (2 * step);
+        fHxu.col(j)  = (state_gradients[0] - state_gradients[1]) / (2 * step);
+      }
+    op.set_candidate(s.u);
+    EXPECT_GE(n_kept, n / 2);
+    EXPECT_GT(g.norm(), 1e-3);
+    EXPECT_GT(H.norm(), 1e-3);
+    EXPECT_GT(Hxu.norm(), 1e-3);
+    const double eg = relative_error_where_defined(g.transpose(), fg);
+    const double eH = relative_error_where_defined(H, fH), eHxu = relative_error_where_defined(Hxu, fHxu);
+    EXPECT_LT(eg, fd_tolerance);
+    if (!ties)
+      EXPECT_LT(eH, fd_tolerance);
+    EXPECT_LT(eHxu, fd_tolerance);
+    EXPECT_LT(relative_error(H, H.transpose()), 1e-10);
+    // The following Hessian is d2b/du2 + d2b/dxdu + d2b/dudx.
+    std::vector<Eigen::Triplet<double>> following;
+    op.add_hessian_following(x, y, 1.0, false, following);
+    Eigen::SparseMatrix<double> F(n, n);
+    F.setFromTriplets(following.begin(), following.end());
+    EXPECT_LT(relative_error(Eigen::MatrixXd(F), H + Hxu + Hxu.transpose()), 1e-13);
+    std::printf("  exact integration, %zu cells, %d of %ld components: relative FD errors du %.1e, du2 %.1e, "
+                "dxdu %.1e\n", s.mesh.cells.size(), n_kept, long(n), eg, eH, eHxu);
+  }
+
+  // The scenario with its old mesh shifted by -delta d: no ties left.
+  Scenario<2> shifted_old_mesh(Scenario<2> s, const double delta)
+  {
+    for (Eigen::Index i = 0; i < s.u_old.size(); ++i)
+      s.u_old[i] -= delta * symbolic_shift[i % 2];
+    return s;
+  }
+
+  void check_exact_at_ties(const Scenario<2> &s)
+  {
+    // Shifted by a thousandth of a cell, the mesh has no ties and slivers far wider than the
+    // finite-difference step: every derivative is checked there.
+    check_exact_finite_differences(shifted_old_mesh(s, 1e-3 * s.mesh.spacing()));
+    const Eigen::Index    n = s.u.size();
+    const Eigen::VectorXd x = random_field(n, 71) + s.u, y = random_field(n, 72) + s.u_old;
+    const auto hessian = [&](const Scenario<2> &t) {
+      TransferOperator<2> op(t.mesh.cells, degree_two_rule<2>(), TransferIntegration::exact);
+      op.set_old_mesh(t.u_old);
+      op.set_candidate(t.u);
+      return Eigen::MatrixXd(op.hessian_u(x, y));
+    };
+    // The Hessian at the ties is the limit of the shifted meshes' as the shift vanishes.
+    const Eigen::MatrixXd at_ties = hessian(s);
+    const double far  = relative_error(at_ties, hessian(shifted_old_mesh(s, 1e-3 * s.mesh.spacing())));
+    // (Much closer than 1e-5 h the shifted meshes' own slivers lose digits to round-off.)
+    const double near = relative_error(at_ties, hessian(shifted_old_mesh(s, 1e-5 * s.mesh.spacing())));
+    std::printf("  Hessian at the ties against the shifted old meshes': relative difference %.1e (shift 1e-3 h), "
+                "%.1e (1e-5 h)\n", far, near);
+    EXPECT_LT(near, 2e-4);
+    EXPECT_LT(near, far / 20);
+    // The first derivatives are continuous: checked at the ties themselves.
+    check_exact_finite_differences(s, true);
+  }
+
+  // Along a straight path of the candidate mesh the quadrature transfer's value has kinks
+  // (its slope jumps where a point changes old cell); the exact one's slope is continuous.
+  // Measured by the largest jump of the first difference between neighbouring samples,
+  // relative to the typical one.
+  double largest_slope_jump(TransferOperator<2> &op, const Scenario<2> &s, const Eigen::VectorXd &x,
+                            const Eigen::VectorXd &y, const Eigen::VectorXd &direction)
+  {
+    constexpr int       samples = 400;
+    std::vector<double> values;
+    for (int i = 0; i <= samples; ++i)
+      {
+        op.set_candidate(s.u + (double(i) / samples) * direction);
+        values.push_back(op.value(x, y));
+      }
+    double jump = 0, slope = 0;
+    for (int i = 1; i < samples; ++i)
+      {
+        jump  = std::max(jump, std::abs(values[i + 1] - 2 * values[i] + values[i - 1]));
+        slope = std::max(slope, std::abs(values[i + 1] - values[i]));
+      }
+    return jump / slope;
   }
 
   // ---- Independent per-cell template for forward-mode AD ----
@@ -258,6 +387,53 @@ TEST(TransferDerivatives, OutsideOldDomain3D) { check_finite_differences(outside
 TEST(TransferDerivatives, MatchesSecondOrderDual1D) { check_against_dual(sliver_scenario<1>(6), test_rule<1>()); }
 TEST(TransferDerivatives, MatchesSecondOrderDual2D) { check_against_dual(sliver_scenario<2>(4), test_rule<2>()); }
 TEST(TransferDerivatives, MatchesSecondOrderDual3D) { check_against_dual(sliver_scenario<3>(2), degree_two_rule<3>()); }
+
+// Both keep the candidate's boundary nodes on the old ones: ties along the boundary.
+TEST(TransferDerivatives, ExactIntegrationJittered2D) { check_exact_at_ties(jittered_scenario<2>(3)); }
+TEST(TransferDerivatives, ExactIntegrationSlivers2D) { check_exact_at_ties(sliver_scenario<2>(4)); }
+TEST(TransferDerivatives, ExactIntegrationOutsideOldDomain2D) { check_exact_finite_differences(outside_scenario<2>(3)); }
+TEST(TransferDerivatives, ExactIntegrationSliding2D)
+{
+  // Boundary nodes slide along the box faces, onto old boundary edges: ties along the boundary.
+  Scenario<2> s;
+  s.mesh  = box_mesh<2>(4);
+  s.u_old = jitter(s.mesh, s.mesh.nodes, 0.15, 91);
+  s.u     = jitter(s.mesh, s.u_old, 0.2, 92);
+  check_exact_at_ties(s);
+}
+TEST(TransferDerivatives, ExactIntegrationOnTheOldMesh2D)
+{
+  // Every candidate cell on its old cell and every edge on an old edge: the configuration
+  // each r-ITR step starts from, decided by the symbolic shift.
+  Scenario<2> s = jittered_scenario<2>(4);
+  s.u           = s.u_old;
+  check_exact_at_ties(s);
+}
+
+TEST(TransferDerivatives, ExactIntegrationHasNoKinks)
+{
+  const Scenario<2>     s = jittered_scenario<2>(4);
+  const Eigen::Index    n = s.u.size();
+  const Eigen::VectorXd x = random_field(n, 81) + s.u, y = random_field(n, 82) + s.u_old;
+  // Interior nodes move by up to 0.1 spacing: many quadrature points cross old edges.
+  const Eigen::VectorXd direction = jitter(s.mesh, s.u, 0.1, 83, true) - s.u;
+  TransferOperator<2> quadrature(s.mesh.cells, test_rule<2>());
+  TransferOperator<2> exact(s.mesh.cells, test_rule<2>(), TransferIntegration::exact);
+  quadrature.set_old_mesh(s.u_old);
+  exact.set_old_mesh(s.u_old);
+  const double kinked = largest_slope_jump(quadrature, s, x, y, direction);
+  const double smooth = largest_slope_jump(exact, s, x, y, direction);
+  std::printf("  largest second difference / largest first difference along the path: quadrature %.1e, exact %.1e\n",
+              kinked, smooth);
+  EXPECT_LT(smooth, 0.01);
+  EXPECT_GT(kinked, 10 * smooth);
+}
+
+TEST(TransferDerivatives, ExactIntegrationOnlyForTriangles)
+{
+  const BoxMesh<3> mesh = box_mesh<3>(2);
+  EXPECT_THROW(TransferOperator<3>(mesh.cells, test_rule<3>(), TransferIntegration::exact), std::invalid_argument);
+}
 
 TEST(TransferDerivatives, ScaledAndProjectedHessian)
 {

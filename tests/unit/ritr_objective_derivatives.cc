@@ -17,7 +17,8 @@ using namespace ritr;
 namespace
 {
   template <int dim>
-  void check_objective(const InertiaForm inertia, const PredictorProjection projection)
+  void check_objective(const InertiaForm inertia, const PredictorProjection projection,
+                       const transfer::TransferIntegration integration = transfer::TransferIntegration::quadrature)
   {
     const SimplexMesh<dim>   mesh = test_support::small_box_mesh<dim>(3);
     const Material           material{MaterialModel::neo_hookean, 2e4, 0.3, 800};
@@ -25,7 +26,8 @@ namespace
     TermSum<dim>             terms(mesh, nullptr);
     terms.template add<ElasticityTerm<dim>>(materials);
     if (projection == PredictorProjection::in_optimization)
-      terms.template add<TransferredInertiaTerm<dim>>(materials, composite_rule(degree_two_rule<dim>(), 3), inertia);
+      terms.template add<TransferredInertiaTerm<dim>>(materials, composite_rule(degree_two_rule<dim>(), 3), inertia,
+                                                       integration);
     else
       terms.template add<InertiaTerm<dim>>(materials, InertiaTerm<dim>::Predictor::nodal, inertia);
     terms.template add<BodyForceTerm<dim>>(materials);
@@ -82,6 +84,14 @@ TEST(RitrObjectiveDerivatives, Corrected1D) { check_objective<1>(InertiaForm::co
 TEST(RitrObjectiveDerivatives, Uncorrected1D) { check_objective<1>(InertiaForm::uncorrected, PredictorProjection::in_optimization); }
 TEST(RitrObjectiveDerivatives, Corrected2D) { check_objective<2>(InertiaForm::corrected, PredictorProjection::in_optimization); }
 TEST(RitrObjectiveDerivatives, Uncorrected2D) { check_objective<2>(InertiaForm::uncorrected, PredictorProjection::in_optimization); }
+TEST(RitrObjectiveDerivatives, CorrectedExactTransfer2D)
+{
+  check_objective<2>(InertiaForm::corrected, PredictorProjection::in_optimization, transfer::TransferIntegration::exact);
+}
+TEST(RitrObjectiveDerivatives, UncorrectedExactTransfer2D)
+{
+  check_objective<2>(InertiaForm::uncorrected, PredictorProjection::in_optimization, transfer::TransferIntegration::exact);
+}
 TEST(RitrObjectiveDerivatives, AfterOptimization2D)
 {
   check_objective<2>(InertiaForm::uncorrected, PredictorProjection::after_optimization);

@@ -5,6 +5,7 @@
 // std::invalid_argument for any other name.
 #include <ritr/common/enum_names.h>
 #include <ritr/terms/inertia_form.h>
+#include <ritr/transfer/transfer_integration.h>
 
 #include <string>
 
@@ -42,6 +43,19 @@ namespace ritr
     both
   };
 
+  // The transfer's integration as a scene chooses it; automatic: exact on triangles (the
+  // objective is then C1 in u), quadrature for rods and tetrahedra.
+  enum class TransferIntegrationChoice
+  {
+    automatic,
+    exact,
+    quadrature
+  };
+
+  inline constexpr EnumNames<TransferIntegrationChoice, 3> transfer_integration_names{
+    {{TransferIntegrationChoice::automatic, "auto"},
+     {TransferIntegrationChoice::exact, "exact"},
+     {TransferIntegrationChoice::quadrature, "quadrature"}}};
   inline constexpr EnumNames<RitrHessian, 4> ritr_hessian_names{{{RitrHessian::truncated, "truncated"},
                                                                   {RitrHessian::full, "full"},
                                                                   {RitrHessian::filtered, "filtered"},
@@ -60,4 +74,5 @@ namespace ritr
   InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected
   PredictorProjection predictor_projection_from(const std::string &name);  // in-|after-optimization
   Admissibility       admissibility_from(const std::string &name);         // none|geometric|physical|both
+  TransferIntegrationChoice transfer_integration_from(const std::string &name);  // auto|exact|quadrature
 } // namespace ritr

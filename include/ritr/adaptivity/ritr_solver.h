@@ -42,6 +42,8 @@ namespace ritr
     // Stiffness kappa_w of the reference measure barrier; 0 takes the contact barrier's
     // stiffness when there is contact, else (h^2) E / w_hat (see ritr_solver.cc).
     double       measure_barrier_stiffness = 0;
+    // Of the velocity's transfer (the inertia term has its own, from the same scene entry).
+    transfer::TransferIntegration transfer_integration = transfer::TransferIntegration::quadrature;
   };
 
   template <int dim>

@@ -28,6 +28,11 @@ namespace ritr
 
     SecondOrderDual() = default;
     SecondOrderDual(const double v) : value(v) {}
+    // Leaves the derivatives unset, for results about to be assigned in full: the arithmetic
+    // below would otherwise clear N + N^2 numbers it then overwrites.
+    struct Unset
+    {};
+    explicit SecondOrderDual(Unset) : grad(), hess() {}
 
     // The i-th independent variable with value v.
     static SecondOrderDual variable(const int i, const double v)
@@ -37,8 +42,20 @@ namespace ritr
       return d;
     }
 
-    SecondOrderDual &operator+=(const SecondOrderDual &b) { return *this = *this + b; }
-    SecondOrderDual &operator-=(const SecondOrderDual &b) { return *this = *this - b; }
+    SecondOrderDual &operator+=(const SecondOrderDual &b)
+    {
+      value += b.value;
+      grad += b.grad;
+      hess += b.hess;
+      return *this;
+    }
+    SecondOrderDual &operator-=(const SecondOrderDual &b)
+    {
+      value -= b.value;
+      grad -= b.grad;
+      hess -= b.hess;
+      return *this;
+    }
     SecondOrderDual &operator*=(const SecondOrderDual &b) { return *this = *this * b; }
     SecondOrderDual &operator/=(const SecondOrderDual &b) { return *this = *this / b; }
   };
@@ -48,7 +65,7 @@ namespace ritr
   SecondOrderDual<N> chain(const SecondOrderDual<N> &a, const double f, const double df,
                            const double d2f)
   {
-    SecondOrderDual<N> r;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = f;
     r.grad  = df * a.grad;
     r.hess  = df * a.hess + d2f * a.grad * a.grad.transpose();
@@ -58,7 +75,7 @@ namespace ritr
   template <int N>
   SecondOrderDual<N> operator+(const SecondOrderDual<N> &a, const SecondOrderDual<N> &b)
   {
-    SecondOrderDual<N> r;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = a.value + b.value;
     r.grad  = a.grad + b.grad;
     r.hess  = a.hess + b.hess;
@@ -68,7 +85,7 @@ namespace ritr
   template <int N>
   SecondOrderDual<N> operator-(const SecondOrderDual<N> &a, const SecondOrderDual<N> &b)
   {
-    SecondOrderDual<N> r;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = a.value - b.value;
     r.grad  = a.grad - b.grad;
     r.hess  = a.hess - b.hess;
@@ -78,7 +95,7 @@ namespace ritr
   template <int N>
   SecondOrderDual<N> operator-(const SecondOrderDual<N> &a)
   {
-    SecondOrderDual<N> r;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = -a.value;
     r.grad  = -a.grad;
     r.hess  = -a.hess;
@@ -88,7 +105,7 @@ namespace ritr
   template <int N>
   SecondOrderDual<N> operator*(const SecondOrderDual<N> &a, const SecondOrderDual<N> &b)
   {
-    SecondOrderDual<N> r;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = a.value * b.value;
     r.grad  = a.value * b.grad + b.value * a.grad;
     r.hess  = a.value * b.hess + b.value * a.hess + a.grad * b.grad.transpose() +
@@ -99,8 +116,13 @@ namespace ritr
   template <int N>
   SecondOrderDual<N> operator/(const SecondOrderDual<N> &a, const SecondOrderDual<N> &b)
   {
-    const double inv = 1.0 / b.value;
-    return a * chain(b, inv, -inv * inv, 2.0 * inv * inv * inv);
+    // r = a / b from a = r b, differentiated once and twice.
+    const double       inv = 1.0 / b.value;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
+    r.value = a.value * inv;
+    r.grad  = (a.grad - r.value * b.grad) * inv;
+    r.hess  = (a.hess - r.value * b.hess - r.grad * b.grad.transpose() - b.grad * r.grad.transpose()) * inv;
+    return r;
   }
 
   // Mixed operations with plain doubles avoid building dual numbers for constants.
@@ -129,7 +151,7 @@ namespace ritr
   template <int N>
   SecondOrderDual<N> operator*(const SecondOrderDual<N> &a, const double b)
   {
-    SecondOrderDual<N> r;
+    SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = a.value * b;
     r.grad  = a.grad * b;
     r.hess  = a.hess * b;

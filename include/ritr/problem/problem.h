@@ -48,6 +48,9 @@ namespace ritr
     std::array<double, dim> gravity(double t) const;
     // The rule that integrates r-adaptivity's L2 transfer on candidate cells.
     SimplexQuadrature<dim> transfer_quadrature() const;
+    // The scene's transfer integration for this dimension; throws InputError for exact
+    // integration outside 2D.
+    transfer::TransferIntegration transfer_integration() const;
 
   private:
     Problem() = default;

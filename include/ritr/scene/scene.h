@@ -84,6 +84,7 @@ namespace ritr
     double      sliding_tolerance = 1e-6;         // eps_b
     double      measure_barrier_stiffness = 0;    // 0: automatic
     unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic
+    TransferIntegrationChoice transfer_integration = TransferIntegrationChoice::automatic;
     unsigned    max_iterations    = 100;
 
     // Subsection Adaptivity: its entries declared with this struct's values as defaults, and

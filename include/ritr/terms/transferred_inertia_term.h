@@ -20,7 +20,8 @@ namespace ritr
   public:
     // Throws std::invalid_argument unless every cell has the same density.
     TransferredInertiaTerm(const CellMaterials<dim> &materials, const SimplexQuadrature<dim> &quadrature,
-                           InertiaForm form);
+                           InertiaForm form,
+                           transfer::TransferIntegration integration = transfer::TransferIntegration::quadrature);
 
     void   begin_step(const StepContext<dim> &context) override;
     void   set_reference(const Eigen::VectorXd &u) override;
@@ -47,6 +48,7 @@ namespace ritr
     double                           density_ = 0;
     bool                             active_  = true;  // dynamics
     Eigen::VectorXd                  predictor_;        // x_t + h v_t on the start-of-step mesh
+    Eigen::VectorXd                  reference_;        // the candidate mesh of transfer_ (empty: none)
     Eigen::VectorXd                  linear_;           // -rho A_t(u) x_pred, the x-linear part
     Eigen::VectorXd                  projected_;        // pi_t(x_pred, u) (uncorrected only)
     double                           constant_ = 0;     // 1/2 rho pi^T Mbar pi (uncorrected only)

@@ -60,11 +60,19 @@ namespace ritr::transfer
     // Barycentric coordinates of X with respect to old cell o (its linear extension).
     std::array<double, dim + 1> barycentric(int o, const Point &X) const;
 
+    // Calls f(o) for every old cell whose bounding box overlaps `box`.
+    template <typename F>
+    void for_each_cell_near(const Aabb<dim> &box, F &&f) const
+    {
+      tree_.for_each_overlap(box, f);
+    }
+
     // Euclidean distance from X to old cell o (zero inside).
     double distance(int o, const Point &X) const;
 
     const AffineBarycentric<dim> &affine_map(const int o) const { return maps_[o]; }
     const Cell                   &cell(const int o) const { return cells_[o]; }
+    const Point                  &node(const int o, const int a) const { return nodes_[o * (dim + 1) + a]; }
     unsigned int                  n_cells() const { return cells_.size(); }
     double                        tolerance() const { return tolerance_; }
 

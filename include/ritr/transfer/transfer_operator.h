@@ -8,7 +8,22 @@
 // with x a nodal vector field on the candidate mesh and y one on the old mesh (flat,
 // node-major: node i component k at i*dim + k).
 //
-// A_t is integrated on the candidate cells only, with a fixed simplex rule whose points are
+// Two ways to integrate A_t (TransferIntegration):
+//
+// exact (triangles only): on the intersection of the two meshes. Each candidate cell is
+// clipped by the old cells it overlaps and the quadratic integrand is integrated exactly on
+// the overlap polygons (triangle_overlap.h), with dual numbers for the derivatives in u. A_t
+// is then C1 in u: moving a node moves the polygons' vertices, and the derivatives include
+// the old field's change of slope across old edges inside the candidate cell. Candidate c
+// integrates the old field of its own start cell c, extended linearly, over the whole cell,
+// and adds on its overlap with every other old cell o the difference of o's field and c's.
+// That difference vanishes on the lines o shares with c, where the slivers are: a node the
+// optimiser barely moves leaves a sliver of width w along an old edge, whose split between
+// the two old cells has second derivatives ~1/w that cancel only in their sum (with the
+// fields themselves, 1e-16/w^2 of error: the Hessian was garbage below w ~ 1e-8). Parts of a
+// candidate cell outside the old domain take the extension of cell c's field.
+//
+// quadrature: on the candidate cells only, with a fixed simplex rule whose points are
 // located in the old mesh once per candidate (set_candidate). With the located old cell o
 // held fixed, the integrand w det J_c(u) lambda_a mu_b(X(u)) is smooth in u: X is linear in
 // the candidate cell's nodes, mu is affine in X and det J is a polynomial. All derivatives
@@ -24,6 +39,7 @@
 // r-ITR optimiser set_candidate(u) and evaluate. Evaluations run in parallel over candidate
 // cells (TBB) and are deterministic (fixed summation order).
 #include <ritr/transfer/old_mesh_locator.h>
+#include <ritr/transfer/transfer_integration.h>
 #include <ritr/common/simplex_quadrature.h>
 
 #include <Eigen/Core>
@@ -44,13 +60,16 @@ namespace ritr::transfer
     using Triplet      = Eigen::Triplet<double>;
     using SparseMatrix = Eigen::SparseMatrix<double>;
 
-    // Throws std::invalid_argument if the rule is malformed (see check_rule).
-    TransferOperator(std::vector<Cell> cells, SimplexQuadrature<dim> quadrature);
+    // Throws std::invalid_argument if the rule is malformed (see check_rule) or exact
+    // integration is asked for outside 2D. The rule is unused with exact integration.
+    TransferOperator(std::vector<Cell> cells, SimplexQuadrature<dim> quadrature,
+                     TransferIntegration integration = TransferIntegration::quadrature);
 
     // Builds the old-mesh locator; invalidates the candidate.
     void set_old_mesh(const Eigen::VectorXd &u_old, double tolerance = 1e-12);
 
-    // Locates every quadrature point of the candidate mesh u in the old mesh; all evaluations
+    // Locates every quadrature point of the candidate mesh u in the old mesh (exact
+    // integration: finds the old cells each candidate cell may overlap); all evaluations
     // below refer to this u and this assignment until the next call.
     void set_candidate(const Eigen::VectorXd &u);
 
@@ -60,7 +79,9 @@ namespace ritr::transfer
     const SimplexQuadrature<dim> &quadrature() const { return quadrature_; }
     const OldMeshLocator<dim>    &locator() const { return locator_; }
     const Eigen::VectorXd        &candidate() const { return u_; }
+    TransferIntegration           integration() const { return integration_; }
 
+    // Quadrature integration only (empty and 0 with exact integration).
     // Old cell of quadrature point q of candidate cell c, at index c * quadrature().size() + q.
     const std::vector<int> &located_cells() const { return located_; }
     // Number of quadrature points found outside the old domain (linear extension used).
@@ -94,6 +115,12 @@ namespace ritr::transfer
     void add_hessian_following(const Eigen::VectorXd &x, const Eigen::VectorXd &y, double scale,
                                bool project_psd, std::vector<Triplet> &triplets) const;
 
+    // All of the above that an outer iteration needs, from one evaluation per cell: adds
+    // scale * db/du to gu, appends scale * d2b/du2 (following: the following Hessian) to huu
+    // and, unless hxu is null, scale * d2b/dxdu to it.
+    void add_reference_derivatives(const Eigen::VectorXd &x, const Eigen::VectorXd &y, double scale, bool following,
+                                   Eigen::VectorXd &gu, std::vector<Triplet> &huu, std::vector<Triplet> *hxu) const;
+
     // Appends scale * d2b/dx du: rows in x numbering, columns in u numbering.
     void add_hessian_xu(const Eigen::VectorXd &x, const Eigen::VectorXd &y, double scale,
                         std::vector<Triplet> &triplets) const;
@@ -117,11 +144,20 @@ namespace ritr::transfer
     template <bool value, bool grad_u, bool hess_u, bool grad_x, bool mixed>
     void cell_terms(unsigned int c, const Eigen::VectorXd *x,
                     const std::vector<OldField> &field, CellTerms &terms) const;
+    // Exact integration (exact_transfer.cc): value (x given) and grad_x in plain arithmetic;
+    // every entry of CellTerms with dual numbers.
+    void exact_cell_values(unsigned int c, const Eigen::VectorXd *x, const std::vector<OldField> &field,
+                           CellTerms &terms) const;
+    void exact_cell_derivatives(unsigned int c, const Eigen::VectorXd &x, const std::vector<OldField> &field,
+                                CellTerms &terms) const;
+    SparseMatrix exact_transfer_matrix() const;
+    void         find_overlaps();  // overlaps_ of the current candidate
     void check_ready(const char *what) const;
     void check_field(const Eigen::VectorXd &v, const char *name) const;
 
     std::vector<Cell>      cells_;
     SimplexQuadrature<dim> quadrature_;
+    TransferIntegration    integration_;
     unsigned int           n_nodes_ = 0;
     OldMeshLocator<dim>    locator_;
     bool                   has_old_mesh_ = false;
@@ -131,5 +167,6 @@ namespace ritr::transfer
     std::vector<int>         located_;
     std::vector<std::size_t> block_offsets_; // prefix sums of distinct old cells per cell
     unsigned int             n_outside_ = 0;
+    std::vector<std::vector<int>> overlaps_;  // exact: old cells whose boxes meet candidate c's
   };
 } // namespace ritr::transfer
