@@ -32,7 +32,6 @@ namespace ritr
       return;
     ScopedTimer timer(seconds_);
     transfer_.set_old_mesh(context.u_start);
-    reference_.resize(0);
   }
 
   template <int dim>
@@ -40,10 +39,6 @@ namespace ritr
   {
     if (!active_)
       return;
-    // The outer solve sets the same mesh several times (its inner solve, R, the derivatives).
-    if (reference_.size() == u.size() && reference_ == u)
-      return;
-    reference_ = u;
     ScopedTimer timer(seconds_);
     transfer_.set_candidate(u);
     linear_ = -density_ * transfer_.gradient_x(predictor_);

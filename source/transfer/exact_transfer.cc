@@ -93,7 +93,7 @@ namespace ritr::transfer
     std::vector<std::vector<Triplet>> per_cell(cells_.size());
     if constexpr (dim == 2)
       for_each_cell(cells_.size(), [&](const std::size_t c) {
-        // As in exact_cell_terms: the old shape functions of cell c on all of K, and on each
+        // As in field_moments: the old shape functions of cell c on all of K, and on each
         // overlap with another old cell o its shape functions minus cell c's.
         const auto                        K = candidate_triangle<double>(gather<dim>(u_, cells_[c]));
         const TriangleBarycentric<double> lambda(K);
@@ -120,8 +120,7 @@ namespace ritr::transfer
             for (int b = 0; b < 3; ++b)
               F[b] = other[b], F[3 + b] = own[b];
             std::array<std::array<double, 6>, 3> m{};
-            if (add_overlap_moments<double, 6>(K, lambda, locator_.affine_map(o), F, m) <= 0)
-              continue;
+            add_overlap_moments<double, 6>(K, lambda, locator_.affine_map(o), F, m);
             for (int a = 0; a < 3; ++a)
               for (int b = 0; b < 3; ++b)
                 {

@@ -286,6 +286,41 @@ namespace
     return A;
   }
 
+  // The same with the parts of each candidate cell that no old cell covers integrated against
+  // the extension of the candidate's own start cell (exact integration's convention).
+  Eigen::MatrixXd extended_intersection_transfer_matrix(const BoxMesh<2> &mesh, const Eigen::VectorXd &u_old,
+                                                        const Eigen::VectorXd &u)
+  {
+    Eigen::MatrixXd A    = intersection_transfer_matrix(mesh, u_old, u);
+    const auto      rule = degree_two_rule<2>();
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+      {
+        const auto pc = corners<2>(u, mesh.cells[c]), own = corners<2>(u_old, mesh.cells[c]);
+        // int over K of lambda_a mu^own_b, minus its share over the covered pieces.
+        auto add = [&](const Piece<2> &piece, const double sign) {
+          Eigen::Matrix2d E;
+          for (int j = 0; j < 2; ++j)
+            E.col(j) = piece[j + 1] - piece[0];
+          const double J = std::abs(E.determinant());
+          for (unsigned int q = 0; q < rule.size(); ++q)
+            {
+              Pt<2> X = Pt<2>::Zero();
+              for (int j = 0; j <= 2; ++j)
+                X += rule.points[q][j] * piece[j];
+              const auto lambda = barycentric<2>(pc, X), mu = barycentric<2>(own, X);
+              for (int a = 0; a <= 2; ++a)
+                for (int b = 0; b <= 2; ++b)
+                  A(mesh.cells[c][a], mesh.cells[c][b]) += sign * rule.weights[q] * J * lambda[a] * mu[b];
+            }
+        };
+        add({pc[0], pc[1], pc[2]}, 1.0);
+        for (const auto &o : mesh.cells)
+          for (const auto &piece : intersect(pc, corners<2>(u_old, o)))
+            add(piece, -1.0);
+      }
+    return A;
+  }
+
   // A_t from quadrature on the candidate mesh converges to the exact intersection integral
   // as the composite rule is refined.
   template <int dim>
@@ -327,12 +362,16 @@ namespace
             EXPECT_LT(relative_error(Eigen::MatrixXd(exact.transfer_matrix()),
                                      intersection_transfer_matrix(t.mesh, t.u_old, t.u)), 1e-13);
           }
-        // Leaving the old domain, a candidate cell takes its own start cell's extension there
-        // (the reference leaves such parts out): linear fields are still reproduced.
+        // Leaving the old domain, a candidate cell takes its own start cell's extension there:
+        // against the reference with that extension added, and linear fields are reproduced.
         const Scenario<dim>   out = outside_scenario<dim>(n);
         TransferOperator<dim> exact(out.mesh.cells, degree_two_rule<dim>(), TransferIntegration::exact);
         exact.set_old_mesh(out.u_old);
         exact.set_candidate(out.u);
+        const Eigen::MatrixXd covered  = intersection_transfer_matrix(out.mesh, out.u_old, out.u);
+        const Eigen::MatrixXd extended = extended_intersection_transfer_matrix(out.mesh, out.u_old, out.u);
+        EXPECT_GT(relative_error(extended, covered), 1e-3);  // the extension matters here
+        EXPECT_LT(relative_error(Eigen::MatrixXd(exact.transfer_matrix()), extended), 1e-13);
         Eigen::Matrix2d M;
         M << 1.5, -0.4, 0.7, 2.0;
         const Eigen::VectorXd linear_old = linear_field<2>(out.u_old, M, Eigen::Vector2d(0.3, -0.4));

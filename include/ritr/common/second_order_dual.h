@@ -29,7 +29,8 @@ namespace ritr
     SecondOrderDual() = default;
     SecondOrderDual(const double v) : value(v) {}
     // Leaves the derivatives unset, for results about to be assigned in full: the arithmetic
-    // below would otherwise clear N + N^2 numbers it then overwrites.
+    // below would otherwise clear N + N^2 numbers it then overwrites. (The member list
+    // overrides the Zero() initialisers; Eigen's default constructor leaves values unset.)
     struct Unset
     {};
     explicit SecondOrderDual(Unset) : grad(), hess() {}

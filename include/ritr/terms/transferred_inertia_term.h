@@ -48,7 +48,6 @@ namespace ritr
     double                           density_ = 0;
     bool                             active_  = true;  // dynamics
     Eigen::VectorXd                  predictor_;        // x_t + h v_t on the start-of-step mesh
-    Eigen::VectorXd                  reference_;        // the candidate mesh of transfer_ (empty: none)
     Eigen::VectorXd                  linear_;           // -rho A_t(u) x_pred, the x-linear part
     Eigen::VectorXd                  projected_;        // pi_t(x_pred, u) (uncorrected only)
     double                           constant_ = 0;     // 1/2 rho pi^T Mbar pi (uncorrected only)

@@ -167,6 +167,6 @@ namespace ritr::transfer
     std::vector<int>         located_;
     std::vector<std::size_t> block_offsets_; // prefix sums of distinct old cells per cell
     unsigned int             n_outside_ = 0;
-    std::vector<std::vector<int>> overlaps_;  // exact: old cells whose boxes meet candidate c's
+    std::vector<std::vector<int>> overlaps_;  // exact: old cells candidate c's clipping overlaps
   };
 } // namespace ritr::transfer

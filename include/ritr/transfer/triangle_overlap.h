@@ -6,8 +6,8 @@
 //
 // with K the candidate triangle (its vertices of scalar type S, so that dual numbers carry
 // derivatives in K's node coordinates) and Q an old triangle given by its affine barycentric
-// map mu(X) = G X + g. The integrand is quadratic on the overlap polygon, so fanning the
-// polygon into triangles and taking each triangle's edge midpoints integrates it exactly.
+// map mu(X) = G X + g. Both factors are affine, so the overlap polygon's area, first and second
+// moments (summed over a fan of triangles) integrate the product exactly.
 //
 // K is clipped by Q's three half-planes mu_b >= 0 (Sutherland-Hodgman), so the polygon's
 // vertices are K's own vertices or crossings of K's edges with Q's lines, and move with K.
@@ -23,6 +23,7 @@
 #include <ritr/common/second_order_dual.h>
 #include <ritr/transfer/old_mesh_locator.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -31,8 +32,9 @@ namespace ritr::transfer
   template <typename S>
   using Point2 = std::array<S, 2>;
 
-  // The direction d of the symbolic shift: generic, so that no mesh line is parallel to it.
-  inline constexpr std::array<double, 2> symbolic_shift{0.8090169943749475, 0.5877852522924731};
+  // The direction d of the symbolic shift: generic (1 radian, no angle of a regular polygon),
+  // so that no mesh line is parallel to it; should one be, the perpendicular decides.
+  inline constexpr std::array<double, 2> symbolic_shift{0.5403023058681398, 0.8414709848078965};
 
   // lambda_a(X) = c_a + e_a . X for a positively oriented triangle P.
   template <typename S>
@@ -124,7 +126,9 @@ namespace ritr::transfer
     add_moments<S, M>(g, origin, lambda, F, moments);
   }
 
-  // The overlap polygon of K and Q: at most 3 + 3 vertices (each of Q's lines adds one).
+  // The overlap polygon of K and Q: clipping a triangle by three lines leaves at most 6
+  // vertices; the capacity also holds the 4, 6, 9 a pass can produce before degenerate
+  // vertices on a line are merged.
   template <typename S>
   struct OverlapPolygon
   {
@@ -163,7 +167,7 @@ namespace ritr::transfer
             v[i]       = gx * value_of(polygon[i].X[0]) + gy * value_of(polygon[i].X[1]) + g0;
             e[i]       = gx * (polygon[i].shift[0] + dx) + gy * (polygon[i].shift[1] + dy);
             on_line[i] = std::abs(v[i]) <= tie;
-            inside[i]  = on_line[i] ? e[i] > 0 : v[i] > 0;
+            inside[i]  = on_line[i] ? (e[i] != 0 ? e[i] > 0 : gy * dx - gx * dy > 0) : v[i] > 0;
           }
         const auto mu = [&](const int i) {
           const S a = gx * polygon[i].X[0] + gy * polygon[i].X[1] + g0;
@@ -205,8 +209,8 @@ namespace ritr::transfer
                                shift * (value_of(polygon[j].X[k]) - value_of(polygon[i].X[k]));
               }
           }
-        polygon = clipped;
-        n       = m;
+        std::copy(clipped.begin(), clipped.begin() + m, polygon.begin());
+        n = m;
       }
     result.size = n;
     return result;
