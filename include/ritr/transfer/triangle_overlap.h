@@ -88,6 +88,10 @@ namespace ritr::transfer
   void add_moments(const RegionMoments<S> &g, const Point2<double> &origin, const TriangleBarycentric<S> &lambda,
                    const std::array<std::array<double, 3>, M> &F, std::array<std::array<S, M>, 3> &moments)
   {
+    // lambda_a about the origin: c_a + e_a . X'.
+    std::array<S, 3> c;
+    for (int a = 0; a < 3; ++a)
+      c[a] = lambda.c[a] + lambda.ex[a] * origin[0] + lambda.ey[a] * origin[1];
     for (int j = 0; j < M; ++j)
       {
         // f_j about the origin: F_j . X' + f0, X' = X - origin.
@@ -96,10 +100,7 @@ namespace ritr::transfer
         const S      ix = fx * g.xx + fy * g.xy + f0 * g.x;    // int X'_0 f_j
         const S      iy = fx * g.xy + fy * g.yy + f0 * g.y;    // int X'_1 f_j
         for (int a = 0; a < 3; ++a)
-          {
-            const S c = lambda.c[a] + lambda.ex[a] * origin[0] + lambda.ey[a] * origin[1];
-            moments[a][j] += c * i1 + lambda.ex[a] * ix + lambda.ey[a] * iy;
-          }
+          moments[a][j] += c[a] * i1 + lambda.ex[a] * ix + lambda.ey[a] * iy;
       }
   }
 
@@ -126,9 +127,8 @@ namespace ritr::transfer
     add_moments<S, M>(g, origin, lambda, F, moments);
   }
 
-  // The overlap polygon of K and Q: clipping a triangle by three lines leaves at most 6
-  // vertices; the capacity also holds the 4, 6, 9 a pass can produce before degenerate
-  // vertices on a line are merged.
+  // The overlap polygon of K and Q: a proper convex clip leaves at most 6 vertices, but with
+  // points decided on a line each pass may add one vertex per edge (3, 4, 6, 9); none are merged.
   template <typename S>
   struct OverlapPolygon
   {
@@ -217,15 +217,15 @@ namespace ritr::transfer
   }
 
   // Adds m_aj (a < 3, j < M) of candidate K over old triangle Q to `moments`; f_j(X) =
-  // F[j][0] X_0 + F[j][1] X_1 + F[j][2]. Returns the overlap's area (0: no overlap).
+  // F[j][0] X_0 + F[j][1] X_1 + F[j][2]. Adds nothing without overlap.
   template <typename S, int M>
-  S add_overlap_moments(const std::array<Point2<S>, 3> &K, const TriangleBarycentric<S> &lambda,
+  void add_overlap_moments(const std::array<Point2<S>, 3> &K, const TriangleBarycentric<S> &lambda,
                         const AffineBarycentric<2> &Q, const std::array<std::array<double, 3>, M> &F,
                         std::array<std::array<S, M>, 3> &moments)
   {
     const OverlapPolygon<S> polygon = clip(K, Q);
     if (polygon.size < 3)
-      return S(0.0);
+      return;
     const Point2<double> origin{value_of(K[0][0]), value_of(K[0][1])};
     const auto           local = [&](const int i) {
       return Point2<S>{polygon.vertices[i].X[0] - origin[0], polygon.vertices[i].X[1] - origin[1]};
@@ -235,6 +235,5 @@ namespace ritr::transfer
     for (int i = 1; i + 1 < polygon.size; ++i)
       add_triangle_geometry(p0, local(i), local(i + 1), g);
     add_moments<S, M>(g, origin, lambda, F, moments);
-    return g.area;
   }
 } // namespace ritr::transfer
