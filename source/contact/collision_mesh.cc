@@ -201,6 +201,20 @@ namespace ritr
   }
 
   template <int dim>
+  std::vector<std::pair<unsigned int, double>> CollisionMesh<dim>::weight_gradient(const WeightSources &sources) const
+  {
+    std::vector<std::pair<unsigned int, double>> gradient;
+    for (const auto &[facet, share] : sources)
+      {
+        const auto  m     = facet_measure_derivatives<dim>(reference_, mesh_.boundary_facets[facet]);
+        const auto &nodes = mesh_.boundary_facets[facet];
+        for (int i = 0; i < dim * dim; ++i)
+          gradient.emplace_back(nodes[i / dim] * dim + i % dim, share * m.grad[i]);
+      }
+    return gradient;
+  }
+
+  template <int dim>
   void CollisionMesh<dim>::add_weight_derivatives(const WeightSources &sources, const double energy,
                                                   const std::vector<int> &stencil, const Eigen::VectorXd &stencil_gradient,
                                                   Eigen::VectorXd &gu, Triplets &huu, Triplets &hxu) const

@@ -73,7 +73,7 @@ namespace ritr
     for (unsigned int f = 0; f < friction_iterations; ++f)
       {
         if (friction)
-          friction->lag(z, terms_.candidates_at(z), step.z_start, barrier ? barrier->stiffness() : 0.0);
+          friction->lag(z, terms_.candidates_at(z), barrier ? barrier->stiffness() : 0.0);
         const Report r = solve_on_mesh(u, z, step.targets);
         report.iterations += r.iterations;
         report.line_search_trials += r.line_search_trials;

@@ -1,6 +1,8 @@
-// The barrier and friction weights are reference boundary measures: finite-difference
-// checks of the contact energy's derivatives w.r.t. the reference positions u (gradient,
-// Hessian) and of the mixed derivative w.r.t. deformed positions and u, in 2D and 3D.
+// The barrier and friction weights are reference boundary measures, and friction's slip is
+// measured from the material points' start positions phi_t(u): finite-difference checks of
+// the contact energy's derivatives w.r.t. the reference positions u (gradient, Hessian) and
+// of the mixed derivative w.r.t. deformed positions and u, in 2D and 3D; and the slip of a
+// reference mesh moved under a body at rest.
 #include <ritr/terms/contact_barrier_term.h>
 #include <ritr/terms/friction_term.h>
 
@@ -32,8 +34,7 @@ namespace
     auto              &friction = terms.template add<FrictionTerm<dim>>(collisions, 0.4, 1e-3);
     barrier.set_stiffness(10.0);
     frictionless.template add<ContactBarrierTerm<dim>>(collisions).set_stiffness(10.0);
-    const Eigen::VectorXd u = mesh.reference;
-    terms.set_reference(u);
+    const Eigen::VectorXd u_start = mesh.reference;
 
     // State: deformed body (lowered a bit, sheared) and the ground's vertices.
     const Eigen::Index n_body = mesh.reference.size();
@@ -46,7 +47,19 @@ namespace
       z.template segment<dim>(n_body + v * dim) = obstacles[0].rest_vertices[v];
     Eigen::VectorXd z_start = z;
     z_start.head(n_body).array() -= 0.002;  // the step slid every body node
-    friction.lag(z, terms.candidates_at(z), z_start, barrier.stiffness());
+    for (Eigen::Index i = 0; i < n_body; ++i)  // and sheared the body a little
+      z_start[i] += 0.003 * std::sin(7.0 * i);
+    StepContext<dim> context;
+    context.u_start = u_start;
+    context.z_start = z_start;
+    terms.begin_step(context);
+    // The derivatives are checked on a moved mesh whose nodes lie inside old cells (or, on
+    // the boundary, outside the old domain): at the old nodes the origins phi_t(u) have kinks.
+    Eigen::VectorXd u = u_start;
+    for (Eigen::Index i = 0; i < u.size(); ++i)
+      u[i] += 1e-3 * std::cos(3.0 * i + 1.0);
+    terms.set_reference(u);
+    friction.lag(z, terms.candidates_at(z), barrier.stiffness());
     const test_support::TermProbe<dim> probe{terms};
     ASSERT_GT(probe.objective(z, u), 0.0);
     // Friction is part of what is checked: it adds energy on top of the barrier.
@@ -72,7 +85,66 @@ namespace
     // The trust-region Newton's one-pass Hessians, barrier and friction.
     probe.expect_one_pass_hessians_match(z, u);
   }
+
+  // A body at rest on the ground whose reference mesh is translated by delta along the
+  // ground: every material point at a node came from delta further on, so the friction is
+  // that of the body slid back by delta on the unmoved mesh, not zero.
+  template <int dim>
+  void check_material_slip()
+  {
+    const double     dhat = 0.05;
+    SimplexMesh<dim> mesh = test_support::small_box_mesh<dim>(2, 0.05, 3);
+    Vec<dim>         origin = Vec<dim>::Zero(), up = Vec<dim>::Zero();
+    up[1]                   = 1;
+    std::vector<contact::RigidObstacle<dim>> obstacles{contact::make_plane<dim>(origin, up, 10.0)};
+    CollisionMesh<dim>                       collisions(mesh, obstacles, dhat, true);
+    TermSum<dim>                             terms(mesh, &collisions);
+    auto &barrier  = terms.template add<ContactBarrierTerm<dim>>(collisions);
+    auto &friction = terms.template add<FrictionTerm<dim>>(collisions, 0.4, 1e-3);
+    barrier.set_stiffness(10.0);
+
+    const Eigen::Index n_body = mesh.reference.size();
+    Eigen::VectorXd    z(n_body + obstacles[0].rest_vertices.size() * dim);
+    z.head(n_body) = mesh.reference;
+    for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
+      z[i * dim + 1] += 0.01;  // hovering within dhat of the ground
+    for (std::size_t v = 0; v < obstacles[0].rest_vertices.size(); ++v)
+      z.template segment<dim>(n_body + v * dim) = obstacles[0].rest_vertices[v];
+    StepContext<dim> context;
+    context.u_start = mesh.reference;
+    context.z_start = z;
+    terms.begin_step(context);
+    terms.set_reference(context.u_start);
+    friction.lag(z, terms.candidates_at(z), barrier.stiffness());
+
+    // Without slip the mollified f0 is at its floor f0(0) = eps / 3.
+    const double at_rest = friction.value(TermPoint{z, context.u_start, CollisionCandidates{}});
+
+    const double    delta = 4e-3;  // above the mollifier's 1e-3: friction at full strength
+    Eigen::VectorXd moved = context.u_start, slid_back = z;
+    for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
+      {
+        moved[i * dim] += delta;
+        slid_back[i * dim] -= delta;
+      }
+    terms.set_reference(moved);
+    const double moved_mesh = friction.value(TermPoint{z, moved, CollisionCandidates{}});
+    terms.set_reference(context.u_start);
+    const double slid_body = friction.value(TermPoint{slid_back, context.u_start, CollisionCandidates{}});
+    EXPECT_GT(slid_body, 5 * at_rest);
+    EXPECT_NEAR(moved_mesh, slid_body, 1e-12 * slid_body);
+    // The force opposes the slip: pulling the body along delta on the moved mesh undoes it.
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(z.size());
+    terms.set_reference(moved);
+    friction.add_gradient(TermPoint{z, moved, CollisionCandidates{}}, g);
+    double along = 0;
+    for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
+      along += g[i * dim];
+    EXPECT_LT(along, 0.0);
+  }
 } // namespace
 
 TEST(ContactWeightDerivatives, BarrierAndFriction2D) { check_weight_derivatives<2>(); }
 TEST(ContactWeightDerivatives, BarrierAndFriction3D) { check_weight_derivatives<3>(); }
+TEST(ContactWeightDerivatives, FrictionSlipOfMaterialPoints2D) { check_material_slip<2>(); }
+TEST(ContactWeightDerivatives, FrictionSlipOfMaterialPoints3D) { check_material_slip<3>(); }

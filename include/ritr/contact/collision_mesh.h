@@ -69,6 +69,10 @@ namespace ritr
     // sum_sources share * |facet| at the current reference.
     double weight_of(const WeightSources &sources) const;
 
+    // dw/du of the weight made of `sources`, as (reference entry, derivative) pairs (an entry
+    // may repeat: facets share nodes).
+    std::vector<std::pair<unsigned int, double>> weight_gradient(const WeightSources &sources) const;
+
     // The u-derivatives of a contact term w(u) e(x), w made of `sources`: e dw/du into gu and
     // e d2w/du2 into huu (reference numbering), de/dx dw/du^T into hxu (rows: state, columns:
     // reference). `stencil` lists the term's collision vertices, `stencil_gradient` is de/dx
