@@ -50,4 +50,33 @@ namespace ritr
       dz[free_state_[a]] = -response[a];
     return dz;
   }
+
+  void fold_following_prescribed(const std::vector<int> &entries, const Eigen::VectorXd &gx, const Triplets &hxx,
+                                 Eigen::VectorXd &gu, Triplets &huu, Triplets &hxu)
+  {
+    if (entries.empty())
+      return;
+    std::vector<bool> follows(gx.size(), false);
+    for (const int e : entries)
+      {
+        follows[e] = true;
+        gu[e] += gx[e];
+      }
+    const std::size_t n_coupling = hxu.size();
+    for (std::size_t i = 0; i < n_coupling; ++i)
+      if (follows[hxu[i].row()])
+        {
+          const auto t = hxu[i];  // emplace_back may move hxu's storage: copy first
+          huu.emplace_back(t.row(), t.col(), t.value());
+          huu.emplace_back(t.col(), t.row(), t.value());
+        }
+    for (const auto &t : hxx)
+      if (follows[t.col()])
+        {
+          if (follows[t.row()])
+            huu.emplace_back(t.row(), t.col(), t.value());
+          else
+            hxu.emplace_back(t.row(), t.col(), t.value());
+        }
+  }
 } // namespace ritr

@@ -42,15 +42,32 @@ namespace ritr
     , youngs_modulus_(materials.of_cell(0).youngs_modulus)
   {
     const std::vector<bool> &kinematic = inner.kinematic();
-    Triplets                 directions;
-    Eigen::Index             m = 0;
+    // Sliding Dirichlet nodes move along their condition's boundary only: a node at its end
+    // (on a facet with a node outside the condition) would carry the condition onto free
+    // boundary, and an interior one into material the condition does not hold.
+    std::vector<bool> slides(mesh_.n_nodes(), false);
+    if (settings.geometric_admissibility)
+      for (const unsigned int n : settings.sliding_dirichlet_nodes)
+        slides[n] = sliding_[n].kind != SlidingKind::interior;
+    {
+      std::vector<bool> on_condition = slides;
+      for (const auto &facet : mesh_.boundary_facets)
+        if (!std::all_of(facet.begin(), facet.end(), [&](const unsigned int n) { return on_condition[n]; }))
+          for (const unsigned int n : facet)
+            slides[n] = false;
+    }
+    Triplets     directions;
+    Eigen::Index m = 0;
     for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
       {
         bool prescribed = false;
         for (int k = 0; k < dim; ++k)
           prescribed = prescribed || kinematic[i * dim + k];
-        if (prescribed)
+        if (prescribed && !slides[i])
           continue;  // a Dirichlet node keeps its reference position (its target depends on it)
+        if (slides[i])
+          for (int k = 0; k < dim; ++k)
+            following_prescribed_.push_back(i * dim + k);
         std::vector<Vec<dim>> allowed;
         const SlidingKind     kind = settings.geometric_admissibility ? sliding_[i].kind : SlidingKind::interior;
         if (kind == SlidingKind::interior)
@@ -73,6 +90,21 @@ namespace ritr
     for (std::size_t i = 0; i < kinematic.size(); ++i)
       if (!kinematic[i])
         free_state_.push_back(i);
+  }
+
+  Eigen::VectorXd sliding_dirichlet_targets(const Eigen::VectorXd &targets, const Eigen::VectorXd &u,
+                                            const Eigen::VectorXd &initial_reference, const std::vector<int> &entries)
+  {
+    Eigen::VectorXd moved = targets;
+    for (const int e : entries)
+      moved[e] += u[e] - initial_reference[e];
+    return moved;
+  }
+
+  template <int dim>
+  Eigen::VectorXd RitrSolver<dim>::targets_at(const Eigen::VectorXd &targets, const Eigen::VectorXd &u) const
+  {
+    return sliding_dirichlet_targets(targets, u, mesh_.reference, following_prescribed_);
   }
 
   template <int dim>
@@ -126,7 +158,8 @@ namespace ritr
   template <int dim>
   typename RitrSolver<dim>::Result RitrSolver<dim>::step(const StepContext<dim> &step)
   {
-    const Eigen::VectorXd &u_t = step.u_start, &z_t = step.z_start, &targets = step.targets;
+    const Eigen::VectorXd &u_t = step.u_start, &z_t = step.z_start;
+    const Eigen::VectorXd  targets = step.targets;  // at the initial reference (targets_at)
     const double           h = step.time_step;
     const bool             dynamic = step.dynamic;
     const Eigen::Index     n_u = u_t.size();
@@ -138,8 +171,10 @@ namespace ritr
     // Physical admissibility at the start-of-step mesh: this also starts the step for every
     // term, sets the contact stiffness and lags friction for the whole step.
     {
-      ScopedTimer timer(r.inner_seconds);
-      r.inner_iterations += inner_.solve_start_of_step(step, r.z).iterations;
+      ScopedTimer      timer(r.inner_seconds);
+      StepContext<dim> start = step;
+      start.targets          = targets_at(targets, u_t);
+      r.inner_iterations += inner_.solve_start_of_step(start, r.z).iterations;
     }
     // The measure barrier's stiffness matches the contact barrier's (paper 5.3.2); without
     // contact it is the elastic stiffness per unit measure at the threshold w_hat.
@@ -231,7 +266,8 @@ namespace ritr
     for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
       {
         terms_.set_reference(r.u);
-        const auto d = terms_.reference_derivatives(r.z, terms_.candidates_at(r.z), ReferenceBlock::exact, true);
+        auto d = terms_.reference_derivatives(r.z, terms_.candidates_at(r.z), ReferenceBlock::exact, true);
+        fold_following_prescribed(following_prescribed_, d.gx, d.hxx, d.gu, d.huu, d.hxu);
         const Eigen::VectorXd g = basis_.transpose() * d.gu;
         if (r.outer_iterations == 0)
           first_gradient = g.norm();
@@ -317,14 +353,17 @@ namespace ritr
     // The state at the trial mesh to first order, kept short of any contact; the inner Newton
     // polishes it (starting with the exact Hessian, which converges from there in ~2 steps).
     Eigen::VectorXd dz = hessian.state_response(step.p);
+    for (const int e : following_prescribed_)
+      dz[e] = step.du[e];
     if (terms_.has_contact())
       dz *= std::min(1.0, 0.9 * terms_.max_step(r.z, dz));
-    Eigen::VectorXd z      = r.z + dz;
-    bool            solved = solve_on_mesh(u, z, targets, r, true);
+    Eigen::VectorXd       z            = r.z + dz;
+    const Eigen::VectorXd trial_target = targets_at(targets, u);
+    bool                  solved       = solve_on_mesh(u, z, trial_target, r, true);
     if (!solved)
       {
         z      = r.z;  // a poor prediction: the warm start of the backtracking path
-        solved = solve_on_mesh(u, z, targets, r);
+        solved = solve_on_mesh(u, z, trial_target, r);
       }
     return {solved ? objective(z, u) : std::numeric_limits<double>::infinity(), u, z};
   }

@@ -210,9 +210,32 @@ namespace ritr
                 }
               condition_of[i] = d;
               dirichlet_nodes_.emplace_back(i, d);
+              if (bc.sliding_reference_nodes)
+                sliding_dirichlet_nodes.push_back(i);
             }
         if (count == 0)
           throw InputError(scene.where(name(d)) + ": selects no node");
+        if (bc.sliding_reference_nodes)
+          {
+            // A sliding node prescribes whichever material point it carries: that is the
+            // condition only where the displacement is the same for all of them.
+            const std::string entry = scene.where(name(d) + "/sliding reference nodes");
+            if (sliding_dirichlet_entry.empty())
+              sliding_dirichlet_entry = entry;
+            for (const double t : {0.0, 0.5 * scene.end_time, scene.end_time})
+              {
+                std::optional<Eigen::VectorXd> first;
+                for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
+                  if (selected[i])
+                    {
+                      const Eigen::VectorXd g = dirichlet_displacements_[d].vector_value(mesh.reference_node(i), t);
+                      if (!first)
+                        first = g;
+                      else if ((g - *first).norm() > 1e-12 * (1 + first->norm()))
+                        throw InputError(entry + ": needs a displacement that is the same at every node of the condition");
+                    }
+              }
+          }
       }
     kinematic.assign(initial_reference.size() + initial_obstacle_positions.size(), false);
     for (const auto &[node, condition] : dirichlet_nodes_)

@@ -1,10 +1,26 @@
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/time/invariants.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace ritr
 {
   template <int dim>
-  std::vector<std::string> InvariantChecker<dim>::check(StepResult &result) const
+  InvariantChecker<dim>::InvariantChecker(const SimplexMesh<dim> &mesh, const CollisionMesh<dim> *collisions,
+                                          const std::vector<bool>         &kinematic,
+                                          const std::vector<unsigned int> &sliding_dirichlet_nodes)
+    : mesh_(mesh)
+    , collisions_(collisions)
+    , kinematic_(kinematic)
+  {
+    for (const unsigned int n : sliding_dirichlet_nodes)
+      for (int k = 0; k < dim; ++k)
+        sliding_entries_.push_back(n * dim + k);
+  }
+
+  template <int dim>
+  std::vector<std::string> InvariantChecker<dim>::check(StepResult &result, const Eigen::VectorXd &targets) const
   {
     StepReport              &report = result.report;
     const std::string        step   = "step " + std::to_string(report.step) + ": ";
@@ -27,6 +43,13 @@ namespace ritr
       violations.push_back(step + "inverted reference element");
     if (!(report.min_deformed_jacobian > 0))
       violations.push_back(step + "inverted element (det F = " + std::to_string(report.min_deformed_jacobian) + ")");
+    const Eigen::VectorXd expected = sliding_dirichlet_targets(targets, result.u, mesh_.reference, sliding_entries_);
+    double                off      = 0;
+    for (std::size_t e = 0; e < kinematic_.size(); ++e)
+      if (kinematic_[e])
+        off = std::max(off, std::abs(result.z[e] - expected[e]) / (1 + std::abs(expected[e])));
+    if (!(off <= 1e-9))
+      violations.push_back(step + "prescribed entry off its target by " + std::to_string(off));
     return violations;
   }
 

@@ -16,7 +16,7 @@ namespace ritr
     , mesh_(problem_->mesh)
     , obstacles_(problem_->obstacles)
     , terms_(*problem_->terms)
-    , invariants_(problem_->mesh, problem_->collisions.get())
+    , invariants_(problem_->mesh, problem_->collisions.get(), problem_->kinematic, problem_->sliding_dirichlet_nodes)
     , u_(problem_->initial_reference)
     , x_(problem_->initial_positions)
     , v_(problem_->initial_velocity)
@@ -69,7 +69,7 @@ namespace ritr
     // The stiffness the step's first solve settled on (later solves of the step keep it).
     if (const auto *barrier = terms_.template find<ContactBarrierTerm<dim>>())
       barrier_stiffness_ = barrier->stiffness();
-    for (auto &violation : invariants_.check(result))
+    for (auto &violation : invariants_.check(result, context.targets))
       invariant_violations_.push_back(std::move(violation));
     result.report.wall_seconds = seconds_since(start);
     history_.push_back(result.report);

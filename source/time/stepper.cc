@@ -101,6 +101,7 @@ namespace ritr
     settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
     settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
     settings.transfer_integration      = problem.transfer_integration();
+    settings.sliding_dirichlet_nodes   = problem.sliding_dirichlet_nodes;
     // epsilon_r is given relative to the bounding-box diagonal of the reference domain.
     settings.epsilon_r = a.epsilon_r * bounding_box_diagonal<dim>(problem.initial_reference);
     return settings;
@@ -137,6 +138,10 @@ namespace ritr
     if (!settings.physical_admissibility && problem.collisions)
       throw InputError(scene.where("Adaptivity/admissibility") +
                        ": without physical admissibility contact is not supported");
+    if (!settings.sliding_dirichlet_nodes.empty() &&
+        (settings.hessian != RitrHessian::reduced || !settings.physical_admissibility))
+      throw InputError(problem.sliding_dirichlet_entry +
+                       ": needs Adaptivity/hessian = reduced with physical admissibility");
     auto solver = std::make_unique<RitrSolver<dim>>(*problem.materials, *implicit_step, settings,
                                                     problem.transfer_quadrature());
     return std::make_unique<RitrStepper<dim>>(std::move(implicit_step), std::move(solver));

@@ -1,6 +1,8 @@
 // The pieces of the trust-region outer step: Steihaug's truncated CG against dense linear
 // algebra (interior Newton step, boundary steps, negative curvature), and the matrix-free
-// reduced Hessian against the dense Schur complement it stands for.
+// reduced Hessian against the dense Schur complement it stands for, and the folding of
+// prescribed entries that follow u (sliding Dirichlet nodes) against finite differences of
+// the composition.
 #include <ritr/adaptivity/reduced_hessian.h>
 #include <ritr/solver/steihaug_cg.h>
 
@@ -8,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "finite_difference.h"
 
 using namespace ritr;
 
@@ -32,6 +36,16 @@ namespace
     for (int i = 0; i < n; ++i)
       v[i] = u(rng);
     return v;
+  }
+
+  // Every entry of a dense matrix, as the terms assemble blocks.
+  Triplets triplets(const Eigen::MatrixXd &m)
+  {
+    Triplets t;
+    for (int i = 0; i < m.rows(); ++i)
+      for (int j = 0; j < m.cols(); ++j)
+        t.emplace_back(i, j, m(i, j));
+    return t;
   }
 
   double model(const Eigen::MatrixXd &S, const Eigen::VectorXd &g, const Eigen::VectorXd &p)
@@ -123,13 +137,6 @@ TEST(ReducedHessian, MatchesTheDenseSchurComplement)
   Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(n_u, n_b);  // sliding-like: unit and tangent columns
   basis(0, 0) = 1, basis(1, 1) = 1, basis(2, 2) = 0.6, basis(3, 2) = 0.8, basis(5, 3) = 1, basis(7, 4) = 1;
 
-  const auto triplets = [](const Eigen::MatrixXd &m) {
-    Triplets t;
-    for (int i = 0; i < m.rows(); ++i)
-      for (int j = 0; j < m.cols(); ++j)
-        t.emplace_back(i, j, m(i, j));
-    return t;
-  };
   SparseCholesky cholesky;
   const Eigen::SparseMatrix<double> sparse_basis = basis.sparseView();
   const ReducedHessian S(triplets(huu), triplets(hxx), triplets(hxu), n_z, free_state, sparse_basis, cholesky);
@@ -156,4 +163,60 @@ TEST(ReducedHessian, MatchesTheDenseSchurComplement)
       for (int a = 0; a < n_f; ++a)
         EXPECT_NEAR(dz[free_state[a]], response[a], 1e-12 * response.norm());
     }
+}
+
+TEST(ReducedHessian, FoldedFollowingEntriesAreTheComposition)
+{
+  // R(z, u) quadratic (plus a cubic in z so that g_z varies); the body's 6 state entries
+  // share numbering with u, 2 obstacle entries follow; entries 1 and 4 are prescribed and
+  // follow u (z_p = u_p + c_p), entry 7 is prescribed and fixed.
+  const int              n_u = 6, n_z = 8;
+  const std::vector<int> following{1, 4}, free_state{0, 2, 3, 5, 6};
+  const Eigen::MatrixXd  H = random_symmetric(n_z + n_u, 0.0, 11);
+  const Eigen::VectorXd  b = random_vector(n_z + n_u, 12), c = random_vector(n_z, 13);
+  const auto R = [&](const Eigen::VectorXd &z, const Eigen::VectorXd &u) {
+    Eigen::VectorXd w(n_z + n_u);
+    w << z, u;
+    return 0.5 * w.dot(H * w) + b.dot(w) + 0.1 * z.array().cube().sum();
+  };
+  // The composition in (free state y, u).
+  const auto compose = [&](const Eigen::VectorXd &y, const Eigen::VectorXd &u) {
+    Eigen::VectorXd z = c;
+    for (std::size_t a = 0; a < free_state.size(); ++a)
+      z[free_state[a]] = y[a];
+    for (const int p : following)
+      z[p] = u[p] + c[p];
+    return z;
+  };
+  const Eigen::VectorXd y = random_vector(free_state.size(), 14), u = random_vector(n_u, 15);
+  const Eigen::VectorXd z = compose(y, u);
+
+  // The blocks as the terms assemble them, at (z, u).
+  Eigen::VectorXd w(n_z + n_u);
+  w << z, u;
+  Eigen::VectorXd gradient = H * w + b;
+  gradient.head(n_z) += 0.3 * z.array().square().matrix();
+  Eigen::MatrixXd hzz = H.topLeftCorner(n_z, n_z);
+  hzz.diagonal() += 0.6 * z;
+  Eigen::VectorXd gu = gradient.tail(n_u);
+  const Eigen::VectorXd gx = gradient.head(n_z);
+  Triplets huu = triplets(H.bottomRightCorner(n_u, n_u)), hxu = triplets(H.topRightCorner(n_z, n_u));
+  fold_following_prescribed(following, gx, triplets(hzz), gu, huu, hxu);
+
+  const auto R_u = [&](const Eigen::VectorXd &v) { return R(compose(y, v), v); };
+  EXPECT_LT(test_support::relative_error(gu, test_support::fd_gradient(R_u, u, 1e-6)), 1e-8);
+  const auto dR_du = [&](const Eigen::VectorXd &v) {
+    return Eigen::VectorXd(test_support::fd_gradient([&](const Eigen::VectorXd &s) { return R(compose(y, s), s); }, v, 1e-5));
+  };
+  EXPECT_LT(test_support::relative_error(test_support::dense(huu, n_u, n_u), test_support::fd_jacobian(dR_du, u, 1e-4)),
+            1e-6);
+  // The coupling's free rows: d/du of dR/dy.
+  const auto dR_dy = [&](const Eigen::VectorXd &v) {
+    return Eigen::VectorXd(test_support::fd_gradient([&](const Eigen::VectorXd &s) { return R(compose(s, v), v); }, y, 1e-5));
+  };
+  const Eigen::MatrixXd coupling = test_support::dense(hxu, n_z, n_u);
+  Eigen::MatrixXd       free_rows(free_state.size(), n_u);
+  for (std::size_t a = 0; a < free_state.size(); ++a)
+    free_rows.row(a) = coupling.row(free_state[a]);
+  EXPECT_LT(test_support::relative_error(free_rows, test_support::fd_jacobian(dR_dy, u, 1e-4)), 1e-6);
 }

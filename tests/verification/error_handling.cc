@@ -278,6 +278,14 @@ namespace
       appended("dhat_zero", "Contact/dhat", with_friction(" set dhat = 0")),
       appended("dirichlet_ids_and_region", "Dirichlet 0", dirichlet(" set region = x\n set boundary ids = 1")),
       appended("dirichlet_selects_nothing", "selects no node", dirichlet(" set region = -1")),
+      // A sliding node prescribes the material point it moves to: only a uniform displacement
+      // means the same condition for all of them, and only the trust-region solve folds it in.
+      appended("sliding_dirichlet_not_uniform", "Dirichlet 0/sliding reference nodes",
+               dirichlet(" set region = 0.1 - x\n set displacement = 0; 0.1 * y * t\n set sliding reference nodes = true") +
+                 "subsection Adaptivity\n set enabled = true\nend\n"),
+      appended("sliding_dirichlet_line_search", "Dirichlet 0/sliding reference nodes",
+               dirichlet(" set region = 0.1 - x\n set sliding reference nodes = true") +
+                 "subsection Adaptivity\n set enabled = true\n set hessian = truncated\nend\n"),
       appended("shape_of_another_dimension", "Body 0: shape 'box'", body(" set shape = box")),
       appended("disk_radius_zero", "Body 0: radius", body(" set shape = disk\n set radius = 0")),
       appended("folded_mesh_in_body_2", "Body 2: the mesh has inverted",

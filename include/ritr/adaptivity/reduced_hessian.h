@@ -41,4 +41,12 @@ namespace ritr
     SparseCholesky             &cholesky_;
     double                      shift_ = 0;
   };
+
+  // Prescribed state entries p whose targets follow u (x_p = u_p + a constant; state and
+  // reference share the body's numbering): the composition R(x_f, x_p(u), u) has the gradient
+  // g_u + g_p, the Hessian H_uu + H_pu + H_up + H_pp and the coupling H_fu + H_fp. Folds the
+  // blocks (hxx with both triangles, as assembled) so that ReducedHessian and B^T g_u are
+  // those of the composition.
+  void fold_following_prescribed(const std::vector<int> &entries, const Eigen::VectorXd &gx, const Triplets &hxx,
+                                 Eigen::VectorXd &gu, Triplets &huu, Triplets &hxu);
 } // namespace ritr

@@ -44,7 +44,16 @@ namespace ritr
     double       measure_barrier_stiffness = 0;
     // Of the velocity's transfer (the inertia term has its own, from the same scene entry).
     transfer::TransferIntegration transfer_integration = transfer::TransferIntegration::quadrature;
+    // Dirichlet nodes that slide along their condition's boundary (trust-region solve only):
+    // each prescribes the material point it carries, x = u + the uniform displacement.
+    std::vector<unsigned int> sliding_dirichlet_nodes;
   };
+
+  // A step's targets (set at the initial reference) with the entries of sliding Dirichlet
+  // nodes moved to reference u: their displacement is uniform, so the target of the material
+  // point a node carries is u plus the same displacement.
+  Eigen::VectorXd sliding_dirichlet_targets(const Eigen::VectorXd &targets, const Eigen::VectorXd &u,
+                                            const Eigen::VectorXd &initial_reference, const std::vector<int> &entries);
 
   template <int dim>
   class RitrSolver
@@ -95,6 +104,9 @@ namespace ritr
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
     double step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
     double transfer_seconds() const;
+    // The step's targets (at the initial reference) with the sliding Dirichlet nodes' moved
+    // to reference u.
+    Eigen::VectorXd targets_at(const Eigen::VectorXd &targets, const Eigen::VectorXd &u) const;
 
     const SimplexMesh<dim>              &mesh_;
     TermSum<dim>                        &terms_;
@@ -111,6 +123,8 @@ namespace ritr
     // Dirichlet nodes. Sliding thus holds exactly, not through a penalty.
     Eigen::SparseMatrix<double>          basis_;
     std::vector<int>                     free_state_;  // non-kinematic state entries
+    // Prescribed entries of sliding Dirichlet nodes: x_p = u_p + displacement follows u.
+    std::vector<int>                     following_prescribed_;
     double                               w_hat_ = 0;
     double                               youngs_modulus_ = 0;
     NewtonSolver                         outer_newton_;    // the line-search outer solves
