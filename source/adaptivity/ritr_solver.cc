@@ -3,6 +3,7 @@
 #include <ritr/common/wall_clock.h>
 #include <ritr/terms/contact_barrier_term.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -122,12 +123,12 @@ namespace ritr
 
   template <int dim>
   bool RitrSolver<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
-                                      Result &r, const bool near_solution)
+                                      Result &r, const bool near_solution, const double tolerance_scale)
   {
     ScopedTimer timer(r.inner_seconds);
     try
       {
-        r.inner_iterations += inner_.solve_on_mesh(u, z, targets, near_solution).iterations;
+        r.inner_iterations += inner_.solve_on_mesh(u, z, targets, near_solution, tolerance_scale).iterations;
         return true;
       }
     catch (const ConvergenceError &)
@@ -255,6 +256,20 @@ namespace ritr
   template <int dim>
   void RitrSolver<dim>::trust_region_solve(const Eigen::VectorXd &targets, Result &r)
   {
+    loose_inner_solves_ = false;
+    trust_region_iterations(targets, r);
+    if (loose_inner_solves_)
+      {
+        // The trials' states were solved loosely: the step ends on a tight solve at its mesh.
+        if (!solve_on_mesh(r.u, r.z, targets_at(targets, r.u), r, true))
+          throw ConvergenceError("the final inner solve at the accepted mesh failed");
+        r.objective = objective(r.z, r.u);
+      }
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::trust_region_iterations(const Eigen::VectorXd &targets, Result &r)
+  {
     // Radii are lengths (outer_model.h); the first is the old fixed cap, half the smallest
     // initial cell, and the region may grow to a hundred of them.
     const double initial_radius = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
@@ -359,11 +374,17 @@ namespace ritr
       dz *= std::min(1.0, 0.9 * terms_.max_step(r.z, dz));
     Eigen::VectorXd       z            = r.z + dz;
     const Eigen::VectorXd trial_target = targets_at(targets, u);
-    bool                  solved       = solve_on_mesh(u, z, trial_target, r, true);
+    // Inexact inner solves in the spirit of Eisenstat and Walker: the state needs no more
+    // accuracy than the outer step resolves, so the tolerance tightens as |du| falls to
+    // epsilon r. R's error is second order in the state's, so the ratio test is unaffected.
+    const double scale = std::clamp(step.du.template lpNorm<Eigen::Infinity>() / settings_.epsilon_r, 1.0,
+                                    std::max(1.0, settings_.inner_tolerance_factor));
+    loose_inner_solves_ = loose_inner_solves_ || scale > 1;
+    bool solved         = solve_on_mesh(u, z, trial_target, r, true, scale);
     if (!solved)
       {
         z      = r.z;  // a poor prediction: the warm start of the backtracking path
-        solved = solve_on_mesh(u, z, trial_target, r);
+        solved = solve_on_mesh(u, z, trial_target, r, false, scale);
       }
     return {solved ? objective(z, u) : std::numeric_limits<double>::infinity(), u, z};
   }

@@ -18,11 +18,13 @@ namespace ritr
   template <int dim>
   typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
                                                                       const Eigen::VectorXd &targets,
-                                                                      const bool             near_solution)
+                                                                      const bool             near_solution,
+                                                                      const double           tolerance_scale)
   {
     terms_.set_reference(u);
     NewtonSettings newton = settings_.newton;
     newton.start_exact    = near_solution;
+    newton.tolerance *= tolerance_scale;
     const NewtonResult r  = newton_.minimize(objective_, z, kinematic_, targets, newton);
     if (r.status != NewtonStatus::converged)
       throw ConvergenceError(r.failure);

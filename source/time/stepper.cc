@@ -99,6 +99,7 @@ namespace ritr
     settings.sliding_tolerance         = a.sliding_tolerance;
     settings.max_outer_iterations      = a.max_iterations;
     settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
+    settings.inner_tolerance_factor = a.inner_tolerance_factor;
     settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
     settings.transfer_integration      = problem.transfer_integration();
     settings.sliding_dirichlet_nodes   = problem.sliding_dirichlet_nodes;

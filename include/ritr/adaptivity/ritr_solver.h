@@ -36,6 +36,9 @@ namespace ritr
     // Trust region: stop when the predicted decrease is below this fraction of R's decrease
     // in the step so far (0: off).
     double       decrease_tolerance      = 0;
+    // Inexact inner solves: a trial's Newton tolerance is loosened by min(this, |du|_inf /
+    // epsilon_r) (at least 1); the step then ends with a tight solve at its mesh.
+    double       inner_tolerance_factor  = 1;
     unsigned int max_outer_iterations    = 0;
     double       sliding_tolerance       = 0;  // eps_b
     double       filter_threshold        = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
@@ -89,7 +92,9 @@ namespace ritr
     // The exact reduced Hessian: Steihaug CG in a trust region whose radius follows the ratio
     // of R's actual to predicted change; trial states are predicted by the implicit-function
     // response of x before the inner solve polishes them.
+    // The step ends with a tight inner solve if a trial was solved loosely.
     void trust_region_solve(const Eigen::VectorXd &targets, Result &r);
+    void trust_region_iterations(const Eigen::VectorXd &targets, Result &r);
     // R at the trial mesh r.u + step.du, with the state predicted and then solved; returns
     // (R or +infinity if the inner solve failed, u, z).
     std::tuple<double, Eigen::VectorXd, Eigen::VectorXd> trial(const typename OuterModel<dim>::Step &step,
@@ -98,7 +103,7 @@ namespace ritr
     // x = argmin E(., u) warm-started from z (`near_solution`: predicted to first order);
     // false if the inner solve failed.
     bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r,
-                       bool near_solution = false);
+                       bool near_solution = false, double tolerance_scale = 1.0);
     // R at (z, u).
     double objective(const Eigen::VectorXd &z, const Eigen::VectorXd &u);
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
@@ -125,6 +130,7 @@ namespace ritr
     std::vector<int>                     free_state_;  // non-kinematic state entries
     // Prescribed entries of sliding Dirichlet nodes: x_p = u_p + displacement follows u.
     std::vector<int>                     following_prescribed_;
+    bool                                 loose_inner_solves_ = false;  // in this step's trials
     double                               w_hat_ = 0;
     double                               youngs_modulus_ = 0;
     NewtonSolver                         outer_newton_;    // the line-search outer solves

@@ -52,8 +52,9 @@ namespace ritr
     // warm-started from z: the stiffness and lagged friction stay frozen, so that the
     // objective is one function across trials. `near_solution`: z is predicted to first
     // order (r-ITR trial meshes), so an adaptive Hessian projection starts exact.
+    // `tolerance_scale` loosens the Newton tolerance (inexact inner solves of the outer one).
     Report solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
-                         bool near_solution = false);
+                         bool near_solution = false, double tolerance_scale = 1.0);
 
     const std::vector<bool> &kinematic() const { return kinematic_; }
     const NewtonSolver      &newton() const { return newton_; }
