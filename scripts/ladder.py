@@ -205,6 +205,11 @@ def main():
 
     with open(args.scene) as f:
         scene_text = f.read()
+    for setting in args.set + [s for _, s in args.ritr_variant]:
+        if "=" not in setting:
+            p.error(f"'{setting}' is not PATH=VALUE")
+    if any(name.startswith("r") and name[1:].isdigit() for name, _ in args.ritr_variant):
+        p.error("--ritr-variant: names rN are the refined r-ITR runs'")
     common = dict(item.split("=", 1) for item in args.set)
     rungs = sorted(args.fixed)[:2] if args.quick else sorted(args.fixed)
     work = args.work or tempfile.mkdtemp(prefix="ladder-")
@@ -212,8 +217,9 @@ def main():
     _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
 
     def rung(name, k, adaptivity, extra=None):
-        overrides = dict(common, **rung_overrides(scene_text, k, adaptivity), **(extra or {}))
-        return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, adaptivity=adaptivity)
+        overrides = {**common, **rung_overrides(scene_text, k, adaptivity), **(extra or {})}
+        return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, adaptivity=adaptivity,
+                    **({"overrides": extra} if extra else {}))
 
     # runs[0] is r-ITR on the scene's own mesh; further r-ITR rungs (paper Fig. 20) follow the fixed ones.
     runs = [rung("ritr", 0, True)] + [rung(f"fixed_r{k}", k, False) for k in rungs]

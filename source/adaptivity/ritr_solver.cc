@@ -46,17 +46,23 @@ namespace ritr
     // Sliding Dirichlet nodes move along their condition's boundary only: a node at its end
     // (on a facet with a node outside the condition) would carry the condition onto free
     // boundary, and an interior one into material the condition does not hold.
+    std::vector<int> condition(mesh_.n_nodes(), -1);
+    for (const auto &[n, d] : settings.sliding_dirichlet_nodes)
+      if (sliding_[n].kind == SlidingKind::facet || sliding_[n].kind == SlidingKind::edge)
+        condition[n] = d;
     std::vector<bool> slides(mesh_.n_nodes(), false);
     if (settings.geometric_admissibility)
-      for (const unsigned int n : settings.sliding_dirichlet_nodes)
-        slides[n] = sliding_[n].kind != SlidingKind::interior;
-    {
-      std::vector<bool> on_condition = slides;
-      for (const auto &facet : mesh_.boundary_facets)
-        if (!std::all_of(facet.begin(), facet.end(), [&](const unsigned int n) { return on_condition[n]; }))
-          for (const unsigned int n : facet)
-            slides[n] = false;
-    }
+      {
+        for (unsigned int n = 0; n < mesh_.n_nodes(); ++n)
+          slides[n] = condition[n] >= 0;
+        // Every facet through a sliding node lies on its condition (one condition: two with
+        // different displacements meet at a node that must stay).
+        for (const auto &facet : mesh_.boundary_facets)
+          if (!std::all_of(facet.begin(), facet.end(),
+                           [&](const unsigned int n) { return condition[n] >= 0 && condition[n] == condition[facet[0]]; }))
+            for (const unsigned int n : facet)
+              slides[n] = false;
+      }
     Triplets     directions;
     Eigen::Index m = 0;
     for (unsigned int i = 0; i < mesh_.n_nodes(); ++i)
@@ -256,14 +262,20 @@ namespace ritr
   template <int dim>
   void RitrSolver<dim>::trust_region_solve(const Eigen::VectorXd &targets, Result &r)
   {
-    loose_inner_solves_ = false;
+    state_loose_ = tight_only_ = false;
     trust_region_iterations(targets, r);
-    if (loose_inner_solves_)
+    if (state_loose_)
       {
-        // The trials' states were solved loosely: the step ends on a tight solve at its mesh.
+        // The accepted state was solved loosely, and the outer stop judged its gradient, which
+        // assumes an exact inner solve: solve tightly at the accepted mesh, then go on with
+        // tight trials until the outer solve stops again.
         if (!solve_on_mesh(r.u, r.z, targets_at(targets, r.u), r, true))
-          throw ConvergenceError("the final inner solve at the accepted mesh failed");
-        r.objective = objective(r.z, r.u);
+          throw ConvergenceError("the tight inner solve at the accepted mesh failed");
+        r.objective  = objective(r.z, r.u);
+        state_loose_ = false;
+        tight_only_  = true;
+        if (r.outer_iterations < settings_.max_outer_iterations)
+          trust_region_iterations(targets, r);
       }
   }
 
@@ -343,9 +355,10 @@ namespace ritr
                 accepted = rho >= 0.05 && trial_objective <= r.objective;
                 if (accepted)
                   {
-                    r.u         = u_trial;
-                    r.z         = z_trial;
-                    r.objective = trial_objective;
+                    r.u          = u_trial;
+                    r.z          = z_trial;
+                    r.objective  = trial_objective;
+                    state_loose_ = last_trial_loose_;
                   }
               }
             if (!accepted && radius <= 1e-3 * settings_.epsilon_r)
@@ -377,10 +390,13 @@ namespace ritr
     // Inexact inner solves in the spirit of Eisenstat and Walker: the state needs no more
     // accuracy than the outer step resolves, so the tolerance tightens as |du| falls to
     // epsilon r. R's error is second order in the state's, so the ratio test is unaffected.
-    const double scale = std::clamp(step.du.template lpNorm<Eigen::Infinity>() / settings_.epsilon_r, 1.0,
-                                    std::max(1.0, settings_.inner_tolerance_factor));
-    loose_inner_solves_ = loose_inner_solves_ || scale > 1;
-    bool solved         = solve_on_mesh(u, z, trial_target, r, true, scale);
+    const double scale =
+      tight_only_ || !(settings_.epsilon_r > 0) ?
+        1.0 :
+        std::clamp(step.du.template lpNorm<Eigen::Infinity>() / settings_.epsilon_r, 1.0,
+                   std::max(1.0, settings_.inner_tolerance_factor));
+    last_trial_loose_ = scale > 1;
+    bool solved       = solve_on_mesh(u, z, trial_target, r, true, scale);
     if (!solved)
       {
         z      = r.z;  // a poor prediction: the warm start of the backtracking path

@@ -211,7 +211,7 @@ namespace ritr
               condition_of[i] = d;
               dirichlet_nodes_.emplace_back(i, d);
               if (bc.sliding_reference_nodes)
-                sliding_dirichlet_nodes.push_back(i);
+                sliding_dirichlet_nodes.emplace_back(i, d);
             }
         if (count == 0)
           throw InputError(scene.where(name(d)) + ": selects no node");
@@ -222,8 +222,11 @@ namespace ritr
             const std::string entry = scene.where(name(d) + "/sliding reference nodes");
             if (sliding_dirichlet_entry.empty())
               sliding_dirichlet_entry = entry;
-            for (const double t : {0.0, 0.5 * scene.end_time, scene.end_time})
+            // At every step's time (the nodes visit points between the sampled nodes, so this
+            // is a sample too, the one the simulation evaluates).
+            for (unsigned int step = 0; step <= scene.n_steps(); ++step)
               {
+                const double t = std::min(step * scene.time_step, scene.end_time);
                 std::optional<Eigen::VectorXd> first;
                 for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
                   if (selected[i])

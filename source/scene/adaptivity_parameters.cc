@@ -23,7 +23,7 @@ namespace ritr
     prm.declare_entry("sliding tolerance", prm_value(d.sliding_tolerance), Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
     prm.declare_entry("decrease tolerance", prm_value(d.decrease_tolerance), Patterns::Double(0), "hessian = reduced: a step also ends (outer_stop small_decrease) once the model predicts a decrease of R below this fraction of the decrease the step has already made; 0: the square root of epsilon r (1e-2 for 1e-4), so that epsilon r stays the one knob.");
     prm.declare_entry("max iterations", prm_value(d.max_iterations), Patterns::Integer(1), "Outer iterations per step.");
-    prm.declare_entry("inner tolerance factor", prm_value(d.inner_tolerance_factor), Patterns::Double(1), "hessian = reduced: inexact inner solves. A trial mesh's Newton tolerance is Solver/newton tolerance times min(this, |du|_inf / epsilon r), so it tightens as the outer step converges; a step that used a looser one ends with a tight inner solve at its mesh. 1: every inner solve tight.");
+    prm.declare_entry("inner tolerance factor", prm_value(d.inner_tolerance_factor), Patterns::Double(1), "hessian = reduced: inexact inner solves. A trial mesh's Newton tolerance is Solver/newton tolerance times min(this, |du|_inf / epsilon r), so it tightens as the outer step converges; a step whose accepted state was solved more loosely goes on with tight solves from a tight one at its mesh. 1: every inner solve tight.");
     prm.leave_subsection();
   }
 

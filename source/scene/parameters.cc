@@ -79,7 +79,7 @@ namespace ritr
           prm.declare_entry("boundary ids", prm_value(dirichlet.boundary_ids), unsigneds(), "Nodes on boundary facets with these ids are prescribed.");
           prm.declare_entry("region", dirichlet.region, Patterns::Anything(), "Or: nodes where this expression of x,y,z is > 0 (e.g. 'x < 1e-6').");
           prm.declare_entry("displacement", zero_vector, Patterns::Anything(), "Prescribed displacement: dim components in x,y,z,t.");
-          prm.declare_entry("sliding reference nodes", prm_value(dirichlet.sliding_reference_nodes), Patterns::Bool(), "r-ITR: the condition's reference nodes slide along its boundary (its nodes at the boundary's ends and corners stay), each prescribing the material point it moves to: x = u + displacement. Needs a displacement that is the same at every node and Adaptivity/hessian = reduced. The paper's default for a clamped base; false holds the nodes (its supplemental variant).");
+          prm.declare_entry("sliding reference nodes", prm_value(dirichlet.sliding_reference_nodes), Patterns::Bool(), "r-ITR: the condition's reference nodes slide along its boundary (its nodes at the boundary's ends and corners stay), each prescribing the material point it moves to: x = u + displacement. Needs a displacement that is the same at every node, Adaptivity/hessian = reduced and admissibility = both. The paper's default for a clamped base; false holds the nodes (its supplemental variant).");
           prm.leave_subsection();
         }
       const ObstacleScene obstacle;

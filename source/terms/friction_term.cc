@@ -2,7 +2,7 @@
 #include <ritr/terms/friction_term.h>
 
 #include <algorithm>
-#include <limits>
+#include <stdexcept>
 
 namespace ritr
 {
@@ -13,11 +13,28 @@ namespace ritr
     , coefficient_(coefficient)
     , epsilon_v_times_h_(epsilon_v_times_h)
   {
-    const auto &mesh = collisions_.mesh();
-    first_cell_.assign(mesh.n_nodes(), std::numeric_limits<unsigned int>::max());
-    for (unsigned int o = mesh.n_cells(); o-- > 0;)
+    const auto                             &mesh = collisions_.mesh();
+    std::vector<std::vector<unsigned int>> cells_of(mesh.n_nodes());
+    for (unsigned int o = 0; o < mesh.n_cells(); ++o)
       for (const unsigned int n : mesh.cells[o])
-        first_cell_[n] = o;
+        cells_of[n].push_back(o);
+    boundary_cells_.assign(mesh.n_nodes(), {});
+    for (const auto &facet : mesh.boundary_facets)
+      for (const unsigned int o : cells_of[facet[0]])
+        {
+          const auto &cell = mesh.cells[o];
+          if (!std::all_of(facet.begin(), facet.end(),
+                           [&](const unsigned int n) { return std::find(cell.begin(), cell.end(), n) != cell.end(); }))
+            continue;
+          for (const unsigned int n : facet)
+            if (std::find(boundary_cells_[n].begin(), boundary_cells_[n].end(), o) == boundary_cells_[n].end())
+              boundary_cells_[n].push_back(o);
+        }
+    // A node on no boundary facet (a rod's interior node, 1D has no friction anyway) takes
+    // the cells around it.
+    for (unsigned int n = 0; n < mesh.n_nodes(); ++n)
+      if (boundary_cells_[n].empty())
+        boundary_cells_[n] = cells_of[n];
   }
 
   template <int dim>
@@ -30,13 +47,15 @@ namespace ritr
     sources_.clear();
     unit_force_.clear();
     stencil_vertices_.clear();
-    origin_cells_.clear();
+    origin_gradients_.clear();
     start_ = collisions_.vertices(z_start_);
   }
 
   template <int dim>
   void FrictionTerm<dim>::lag(const Eigen::VectorXd &z_lagged, const CollisionCandidates &candidates, const double kappa)
   {
+    if (u_start_.size() == 0)
+      throw std::logic_error("FrictionTerm::lag before begin_step: the slip has no start-of-step state");
     friction_.clear();
     sources_.clear();
     unit_force_.clear();
@@ -53,7 +72,7 @@ namespace ritr
           sources_.push_back(collisions_.weight_sources(c));
           unit_force_.push_back(f.normal_force / collisions_.weights().weight(c));
           for (int s = 0; s < f.n_vertices; ++s)
-            if (static_cast<unsigned int>(collisions_.state_vertex(f.vertices[s])) < first_cell_.size())
+            if (static_cast<unsigned int>(collisions_.state_vertex(f.vertices[s])) < boundary_cells_.size())
               stencil_vertices_.push_back(f.vertices[s]);
         }
     std::sort(stencil_vertices_.begin(), stencil_vertices_.end());
@@ -64,7 +83,7 @@ namespace ritr
   template <int dim>
   void FrictionTerm<dim>::update_start(const Eigen::VectorXd &u)
   {
-    origin_cells_.resize(stencil_vertices_.size());
+    origin_gradients_.resize(stencil_vertices_.size());
     for (std::size_t k = 0; k < stencil_vertices_.size(); ++k)
       {
         const int      c = stencil_vertices_[k];
@@ -72,9 +91,13 @@ namespace ritr
         const Vec<dim> X = u.template segment<dim>(n * dim);
         if (X == u_start_.template segment<dim>(n * dim))
           {
-            // Unmoved: the node's own start position (no round-off from a barycentric sum).
-            origin_cells_[k] = first_cell_[n];
-            start_.row(c)    = z_start_.template segment<dim>(n * dim).transpose();
+            // Unmoved: the node's own start position (no round-off from a barycentric sum),
+            // and, on the kink, the mean slope of the boundary cells around it.
+            start_.row(c)        = z_start_.template segment<dim>(n * dim).transpose();
+            origin_gradients_[k] = Jacobian::Zero();
+            for (const unsigned int o : boundary_cells_[n])
+              origin_gradients_[k] += start_gradient(o);
+            origin_gradients_[k] /= boundary_cells_[n].size();
             continue;
           }
         if (!old_mesh_built_)
@@ -84,9 +107,9 @@ namespace ritr
           }
         // Outside the old domain (a node sliding off a curved boundary) the nearest old
         // cell's linear extension, as the transfer has it.
-        const auto location = old_mesh_.locate(X);
-        origin_cells_[k]    = location.cell;
-        Vec<dim> origin     = Vec<dim>::Zero();
+        const auto location  = old_mesh_.locate(X);
+        origin_gradients_[k] = start_gradient(location.cell);
+        Vec<dim> origin      = Vec<dim>::Zero();
         for (int b = 0; b <= dim; ++b)
           origin += location.barycentric[b] *
                     z_start_.template segment<dim>(collisions_.mesh().cells[location.cell][b] * dim);
@@ -170,13 +193,10 @@ namespace ritr
     // old cell's deformation gradient J_i, so dS/du is J_i on the vertex's own node and
     // D's u-derivatives take -J^T of its V-derivatives (S enters as -V does).
     const Eigen::MatrixXd V = collisions_.vertices(p.z);
-    std::vector<int>      origin_index(collisions_.n_collision_vertices(), -1);
-    std::vector<Jacobian> J(stencil_vertices_.size());
+    std::vector<int> origin_index(collisions_.n_collision_vertices(), -1);
     for (std::size_t k = 0; k < stencil_vertices_.size(); ++k)
-      {
-        origin_index[stencil_vertices_[k]] = k;
-        J[k]                               = start_gradient(origin_cells_[k]);
-      }
+      origin_index[stencil_vertices_[k]] = k;
+    const std::vector<Jacobian> &J = origin_gradients_;
     Triplets &huu = d.huu.triplets();
     Triplets  hxu;
     for (std::size_t j = 0; j < friction_.size(); ++j)
@@ -194,7 +214,8 @@ namespace ritr
           gradient.segment<dim>(s * dim) = full.segment<dim>(stencil[s] * dim);
         collisions_.add_weight_derivatives(sources_[j], energy, stencil, gradient, d.gu, huu, hxu);
 
-        // Stencil Hessian of Dhat_j in V.
+        // Stencil Hessian of Dhat_j in V: the projected one, which equals the exact one (the
+        // tangential matrix is PSD analytically; the projection clips round-off only).
         Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(n * dim, n * dim);
         const auto      position = [&](const int row) {
           const int c = row / dim;
@@ -226,17 +247,16 @@ namespace ritr
                 // d2/dV_s du_t = -w H_st J_t; d2/du_s du_t = w J_s^T H_st J_t.
                 const Jacobian mixed = -weight * hessian.block<dim, dim>(s * dim, t * dim) * J[k];
                 const int      ks    = origin_index[stencil[s]];
-                const int      row   = collisions_.state_vertex(stencil[s]);
+                const int      row   = collisions_.state_vertex(stencil[s]);  // a node if ks >= 0
                 for (int a1 = 0; a1 < dim; ++a1)
                   for (int b1 = 0; b1 < dim; ++b1)
                     hxu.emplace_back(row * dim + a1, node * dim + b1, mixed(a1, b1));
                 if (ks < 0)
                   continue;
-                const Jacobian both  = -J[ks].transpose() * mixed;
-                const unsigned int ns = collisions_.state_vertex(stencil[s]);
+                const Jacobian both = -J[ks].transpose() * mixed;
                 for (int a1 = 0; a1 < dim; ++a1)
                   for (int b1 = 0; b1 < dim; ++b1)
-                    huu.emplace_back(ns * dim + a1, node * dim + b1, both(a1, b1));
+                    huu.emplace_back(row * dim + a1, node * dim + b1, both(a1, b1));
               }
           }
       }

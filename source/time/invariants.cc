@@ -9,12 +9,12 @@ namespace ritr
   template <int dim>
   InvariantChecker<dim>::InvariantChecker(const SimplexMesh<dim> &mesh, const CollisionMesh<dim> *collisions,
                                           const std::vector<bool>         &kinematic,
-                                          const std::vector<unsigned int> &sliding_dirichlet_nodes)
+                                          const std::vector<std::pair<unsigned int, unsigned int>> &sliding_dirichlet_nodes)
     : mesh_(mesh)
     , collisions_(collisions)
     , kinematic_(kinematic)
   {
-    for (const unsigned int n : sliding_dirichlet_nodes)
+    for (const auto &[n, condition] : sliding_dirichlet_nodes)
       for (int k = 0; k < dim; ++k)
         sliding_entries_.push_back(n * dim + k);
   }

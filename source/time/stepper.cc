@@ -140,9 +140,10 @@ namespace ritr
       throw InputError(scene.where("Adaptivity/admissibility") +
                        ": without physical admissibility contact is not supported");
     if (!settings.sliding_dirichlet_nodes.empty() &&
-        (settings.hessian != RitrHessian::reduced || !settings.physical_admissibility))
+        (settings.hessian != RitrHessian::reduced || !settings.physical_admissibility ||
+         !settings.geometric_admissibility))
       throw InputError(problem.sliding_dirichlet_entry +
-                       ": needs Adaptivity/hessian = reduced with physical admissibility");
+                       ": needs Adaptivity/hessian = reduced and admissibility = both (nodes slide along facets)");
     auto solver = std::make_unique<RitrSolver<dim>>(*problem.materials, *implicit_step, settings,
                                                     problem.transfer_quadrature());
     return std::make_unique<RitrStepper<dim>>(std::move(implicit_step), std::move(solver));

@@ -49,7 +49,7 @@ namespace ritr
     transfer::TransferIntegration transfer_integration = transfer::TransferIntegration::quadrature;
     // Dirichlet nodes that slide along their condition's boundary (trust-region solve only):
     // each prescribes the material point it carries, x = u + the uniform displacement.
-    std::vector<unsigned int> sliding_dirichlet_nodes;
+    std::vector<std::pair<unsigned int, unsigned int>> sliding_dirichlet_nodes;  // node, condition
   };
 
   // A step's targets (set at the initial reference) with the entries of sliding Dirichlet
@@ -92,7 +92,7 @@ namespace ritr
     // The exact reduced Hessian: Steihaug CG in a trust region whose radius follows the ratio
     // of R's actual to predicted change; trial states are predicted by the implicit-function
     // response of x before the inner solve polishes them.
-    // The step ends with a tight inner solve if a trial was solved loosely.
+    // A step whose accepted state was solved loosely goes on from a tight solve at its mesh.
     void trust_region_solve(const Eigen::VectorXd &targets, Result &r);
     void trust_region_iterations(const Eigen::VectorXd &targets, Result &r);
     // R at the trial mesh r.u + step.du, with the state predicted and then solved; returns
@@ -130,7 +130,9 @@ namespace ritr
     std::vector<int>                     free_state_;  // non-kinematic state entries
     // Prescribed entries of sliding Dirichlet nodes: x_p = u_p + displacement follows u.
     std::vector<int>                     following_prescribed_;
-    bool                                 loose_inner_solves_ = false;  // in this step's trials
+    // Inexact inner solves: whether the last trial and the accepted state were solved loosely,
+    // and whether the step has gone over to tight solves.
+    bool last_trial_loose_ = false, state_loose_ = false, tight_only_ = false;
     double                               w_hat_ = 0;
     double                               youngs_modulus_ = 0;
     NewtonSolver                         outer_newton_;    // the line-search outer solves

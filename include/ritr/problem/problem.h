@@ -36,9 +36,9 @@ namespace ritr
     // r-adaptivity the reference measure barrier.
     std::unique_ptr<TermSum<dim>>            terms;
     std::vector<bool>                        kinematic;  // prescribed state entries
-    // Dirichlet nodes whose condition lets r-ITR slide them (`sliding reference nodes`), and
-    // that entry of the first such condition (for errors).
-    std::vector<unsigned int>                sliding_dirichlet_nodes;
+    // Dirichlet nodes whose condition lets r-ITR slide them (`sliding reference nodes`), with
+    // their condition, and that entry of the first such condition (for errors).
+    std::vector<std::pair<unsigned int, unsigned int>> sliding_dirichlet_nodes;  // node, condition
     std::string                              sliding_dirichlet_entry;
 
     // The initial state: reference and deformed body nodes, their velocity, and the obstacle

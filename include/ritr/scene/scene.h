@@ -36,10 +36,10 @@ namespace ritr
     std::vector<unsigned int> boundary_ids;  // nodes on these boundary facets
     std::string               region;        // or nodes where this expression in x,y,z > 0
     std::string               displacement;  // vector expression in x,y,z,t
+    std::string               section;
     // r-ITR: the condition's boundary nodes slide along it, carrying it to the material
     // points they move to (x = u + displacement; the displacement must be uniform).
     bool                      sliding_reference_nodes = false;
-    std::string               section;
   };
 
   struct ObstacleScene

@@ -42,8 +42,7 @@ namespace ritr
 
   private:
     using Jacobian = Eigen::Matrix<double, dim, dim>;
-    // The slip origins of the stencils' body vertices at reference u, and the old cell each
-    // one lies in.
+    // The slip origins of the stencils' body vertices at reference u and their derivatives.
     void     update_start(const Eigen::VectorXd &u);
     // d phi_t / dX in old cell o: the cell's start-of-step deformation gradient.
     Jacobian start_gradient(unsigned int o) const;
@@ -55,11 +54,13 @@ namespace ritr
     // Built in a step's first evaluation on a moved mesh (a fixed mesh never needs it).
     transfer::OldMeshLocator<dim>                 old_mesh_;
     bool                                          old_mesh_built_ = false;
-    std::vector<unsigned int>                     first_cell_;  // per node: smallest cell index containing it
+    // Per node: the cells that own a boundary facet through it (an unmoved node sits on a kink
+    // of phi_t; these cells' gradients, averaged, are the slopes along the boundary it slides on).
+    std::vector<std::vector<unsigned int>>        boundary_cells_;
     Eigen::MatrixXd                               start_;  // collision vertices' slip origins
-    // Collision vertices of the body in some stencil, and the old cell of each one's origin.
+    // Collision vertices of the body in some stencil, and d origin / d u of each.
     std::vector<int>                              stencil_vertices_;
-    std::vector<unsigned int>                     origin_cells_;
+    std::vector<Jacobian>                         origin_gradients_;
     // Per friction constraint: the weight's sources and the normal force per unit weight.
     std::vector<typename CollisionMesh<dim>::WeightSources> sources_;
     std::vector<double>                                     unit_force_;

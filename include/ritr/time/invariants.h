@@ -19,7 +19,8 @@ namespace ritr
     // `collisions` may be null (no contact, no distance to check); `kinematic` flags the
     // prescribed state entries, `sliding_dirichlet_nodes` the nodes whose targets follow u.
     InvariantChecker(const SimplexMesh<dim> &mesh, const CollisionMesh<dim> *collisions,
-                     const std::vector<bool> &kinematic, const std::vector<unsigned int> &sliding_dirichlet_nodes);
+                     const std::vector<bool>                                  &kinematic,
+                     const std::vector<std::pair<unsigned int, unsigned int>> &sliding_dirichlet_nodes);
 
     // Fills the report's distance and element measures for the state reached by `result`,
     // and returns the invariants it violates, one line each; `targets` are the step's
