@@ -9,29 +9,44 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "scenes.h"
 
 using namespace ritr;
 
+namespace
+{
+  // A 1 x 0.5 neo-Hookean block clamped at its base, punched quasi-statically from above by a
+  // rigid bar of width `width` centred at x = `centre`, moving down by `depth` over t in [0, 1].
+  Scene punched_block(const double time_step, const double end_time, const double centre, const double width,
+                      const std::string &depth, const bool sliding_base)
+  {
+    Scene s = test_support::basic_scene(2, "rectangle");
+    s.mode                            = "static";
+    s.time_step                       = time_step;
+    s.end_time                        = end_time;
+    s.bodies[0].geometry.lower        = {-0.5, 0};
+    s.bodies[0].geometry.upper        = {0.5, 0.5};
+    s.bodies[0].geometry.subdivisions = {8, 4};
+    s.materials[0]                    = Material{MaterialModel::neo_hookean, 1e5, 0.3, 1000};
+    DirichletScene base{{}, "1e-9 - y", "0;0", {}};
+    base.sliding_reference_nodes = sliding_base;
+    s.dirichlet.push_back(base);
+    s.contact.enabled = true;
+    s.contact.dhat    = 1e-3;
+    ObstacleScene punch = test_support::plane_obstacle(2, {centre, 0.6 + 2e-3, 0}, {0, 1, 0});
+    punch.type          = "punch";
+    punch.size          = {width, 0.2, 1};
+    punch.translation   = "0; -" + depth + " * t";
+    s.obstacles.push_back(punch);
+    return s;
+  }
+} // namespace
+
 TEST(QuasiStaticPunch, TopFollowsThePunch)
 {
-  Scene s = test_support::basic_scene(2, "rectangle");
-  s.mode                            = "static";
-  s.time_step                       = 0.2;
-  s.end_time                        = 1.0;
-  s.bodies[0].geometry.lower        = {-0.5, 0};
-  s.bodies[0].geometry.upper        = {0.5, 0.5};
-  s.bodies[0].geometry.subdivisions = {8, 4};
-  s.materials[0]                    = Material{MaterialModel::neo_hookean, 1e5, 0.3, 1000};
-  s.dirichlet.push_back(DirichletScene{{}, "1e-9 - y", "0;0", {}});
-  s.contact.enabled = true;
-  s.contact.dhat    = 1e-3;
-  ObstacleScene punch = test_support::plane_obstacle(2, {0, 0.6 + 2e-3, 0}, {0, 1, 0});
-  punch.type          = "punch";
-  punch.size          = {2, 0.2, 1};
-  punch.translation   = "0; -0.05 * t";
-  s.obstacles.push_back(punch);
+  const Scene s = punched_block(0.2, 1.0, 0, 2, "0.05", false);
   Simulation<2> sim(s);
   for (unsigned int i = 0; i < s.n_steps(); ++i)
     {
@@ -49,24 +64,7 @@ TEST(QuasiStaticPunch, TopFollowsThePunch)
 
 TEST(QuasiStaticPunch, SlidingBaseNodesStayOnTheClampedMaterial)
 {
-  Scene s = test_support::basic_scene(2, "rectangle");
-  s.mode                            = "static";
-  s.time_step                       = 0.25;
-  s.end_time                        = 0.5;
-  s.bodies[0].geometry.lower        = {-0.5, 0};
-  s.bodies[0].geometry.upper        = {0.5, 0.5};
-  s.bodies[0].geometry.subdivisions = {8, 4};
-  s.materials[0]                    = Material{MaterialModel::neo_hookean, 1e5, 0.3, 1000};
-  DirichletScene base{{}, "1e-9 - y", "0;0"};
-  base.sliding_reference_nodes = true;
-  s.dirichlet.push_back(base);
-  s.contact.enabled = true;
-  s.contact.dhat    = 1e-3;
-  ObstacleScene punch = test_support::plane_obstacle(2, {0.05, 0.6 + 2e-3, 0}, {0, 1, 0});
-  punch.type          = "punch";
-  punch.size          = {0.25, 0.2, 1};
-  punch.translation   = "0; -0.2 * t";
-  s.obstacles.push_back(punch);
+  Scene s = punched_block(0.25, 0.5, 0.05, 0.25, "0.2", true);
   s.adaptivity.enabled = true;
   Simulation<2> sim(s);
   for (unsigned int i = 0; i < s.n_steps(); ++i)
