@@ -1,6 +1,7 @@
 #include <ritr/adaptivity/line_search_outer.h>
 #include <ritr/adaptivity/ritr_solver.h>
 #include <ritr/common/wall_clock.h>
+#include <ritr/solver/steihaug_cg.h>
 #include <ritr/terms/contact_barrier_term.h>
 
 #include <algorithm>
@@ -306,12 +307,11 @@ namespace ritr
           barrier.set_point(r.u);
           model.emplace(*hessian, barrier, g, basis_, preconditioner_);
         }
-        // Inexact Newton: the CG residual relative to |g| shrinks with |g| (superlinear
-        // convergence without oversolving far from the minimum). The cap is tight because
-        // |g| often stays near its first value while the mesh creeps along a flat valley:
-        // with a cap of 0.1 the steps then left a tenth of the model's gradient each time,
-        // and late ball-on-spikes steps took 100-200 iterations of ~1e-9 decrease each.
-        const double forcing   = std::min(1e-2, std::sqrt(g.norm() / std::max(first_gradient, 1e-300)));
+        // The forcing term's cap is tight because |g| often stays near its first value while
+        // the mesh creeps along a flat valley: with a cap of 0.1 the steps then left a tenth
+        // of the model's gradient each time, and late ball-on-spikes steps took 76-200
+        // iterations of ~1e-9 decrease each.
+        const double forcing   = forcing_term(g.norm(), first_gradient, 1e-2);
         const double round_off = 1e-13 * std::max(1.0, std::abs(r.objective));
         for (bool accepted = false; !accepted;)
           {

@@ -52,10 +52,10 @@ namespace ritr
         region.radius = (settings.start_exact ? 100.0 : 1.0) * std::sqrt(std::max(g_free.dot(precondition(g_free)), 0.0));
         region.first_gradient = gradient_norm;
       }
-    // Inexact Newton: CG's residual relative to |g| shrinks with |g|. CG iterations cost a
-    // back-substitution each, so the cap is tight: at 0.1 the solves from r-ITR's predicted
-    // states took one step more (2,886 against 1,770 inner iterations on the ball on spikes).
-    const double forcing = std::min(1e-3, std::sqrt(gradient_norm / std::max(region.first_gradient, 1e-300)));
+    // CG iterations cost a back-substitution each, so the forcing term's cap is tight: at
+    // 0.1 the solves from r-ITR's predicted states took one step more (2,886 against 1,770
+    // inner iterations on the ball on spikes).
+    const double forcing = forcing_term(gradient_norm, region.first_gradient, 1e-3);
     const double round_off = energy_round_off(e0);
     const double position_round_off = 4 * std::numeric_limits<double>::epsilon() * z.lpNorm<Eigen::Infinity>();
 

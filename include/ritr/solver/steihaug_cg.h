@@ -9,6 +9,8 @@
 // back-substitution per product.
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 
 namespace ritr
@@ -24,6 +26,14 @@ namespace ritr
     double          metric_norm = 0;      // |step|_M
     unsigned int    iterations = 0;       // products with S
   };
+
+  // Inexact Newton's forcing term, CG's residual relative to |g|: it shrinks like
+  // sqrt(|g| / |g_0|) (superlinear convergence without oversolving far from the minimum) and
+  // is at most `cap`, which each caller sets from what a CG iteration costs it.
+  inline double forcing_term(const double gradient_norm, const double first_gradient_norm, const double cap)
+  {
+    return std::min(cap, std::sqrt(gradient_norm / std::max(first_gradient_norm, 1e-300)));
+  }
 
   // `precondition` applies M^-1 (empty: M = I).
   SteihaugResult steihaug_cg(const LinearMap &apply, const Eigen::VectorXd &g, double radius, double tolerance,
