@@ -27,14 +27,8 @@ namespace ritr
   template <int dim>
   void MeasureBarrierModel<dim>::set_point(const Eigen::VectorXd &u)
   {
-    u_ = u;
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(u.size());
-    Triplets        h;
-    value_ = kappa_ > 0 ? reference_measure_barrier(mesh_, u, w_hat_, kappa_, &g, &h, true) : 0.0;
-    Eigen::SparseMatrix<double> full(u.size(), u.size());
-    full.setFromTriplets(h.begin(), h.end());
-    gradient_ = basis_.transpose() * g;
-    hessian_  = basis_.transpose() * full * basis_;
+    u_    = u;
+    base_ = at(Eigen::VectorXd::Zero(basis_.cols()));
     build_secant_rows();
   }
 
@@ -63,43 +57,21 @@ namespace ritr
   }
 
   template <int dim>
-  Eigen::SparseMatrix<double> MeasureBarrierModel<dim>::stiffness() const
+  Eigen::SparseMatrix<double> MeasureBarrierModel<dim>::secants() const
   {
-    return hessian_ + Eigen::SparseMatrix<double>(secant_rows_.transpose() * secant_rows_);
+    return secant_rows_.transpose() * secant_rows_;
   }
 
   template <int dim>
-  std::pair<double, double> MeasureBarrierModel<dim>::best_fraction(const Eigen::VectorXd &p, const double alpha_max,
-                                                                    const double slope, const double curvature) const
-  {
-    const Eigen::VectorXd     du = basis_ * p;
-    std::pair<double, double> best{alpha_max, std::numeric_limits<double>::infinity()};
-    // Uniform fractions, then halvings down to 2^-40: a cell at the barrier's onset may only
-    // admit a tiny step along a direction that ignores it.
-    constexpr int uniform = 32, halvings = 40;
-    for (int k = 0; k < uniform + halvings; ++k)
-      {
-        const double alpha =
-          alpha_max * (k < uniform ? double(uniform - k) / uniform : std::ldexp(1.0, -(k - uniform + 6)));
-        double change = alpha * slope + 0.5 * alpha * alpha * curvature;
-        if (kappa_ > 0)
-          change += value_at(Eigen::VectorXd(u_ + alpha * du)) - value_;
-        if (change < best.second)
-          best = {alpha, change};
-      }
-    return best;
-  }
-
-  template <int dim>
-  bool MeasureBarrierModel<dim>::add_secants(const Eigen::VectorXd &p)
+  bool MeasureBarrierModel<dim>::add_secants(const Eigen::VectorXd &p, const Eigen::VectorXd &d)
   {
     if (kappa_ <= 0)
       return false;
-    const Eigen::VectorXd u1    = u_ + basis_ * p;
+    const Eigen::VectorXd u0 = u_ + basis_ * p, u1 = u0 + basis_ * d;
     bool                  added = false;
     for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
       {
-        const double w0 = simplex_measure<dim, double>(cell_nodes<dim>(u_, mesh_.cells[c]));
+        const double w0 = simplex_measure<dim, double>(cell_nodes<dim>(u0, mesh_.cells[c]));
         const double w1 = simplex_measure<dim, double>(cell_nodes<dim>(u1, mesh_.cells[c]));
         if (!(w1 < w_hat_ && w1 < w0 && w1 > 0))
           continue;
@@ -119,6 +91,44 @@ namespace ritr
     if (added)
       build_secant_rows();
     return added;
+  }
+
+  template <int dim>
+  typename MeasureBarrierModel<dim>::Derivatives MeasureBarrierModel<dim>::at(const Eigen::VectorXd &p) const
+  {
+    const Eigen::VectorXd u = u_ + basis_ * p;
+    Eigen::VectorXd       g = Eigen::VectorXd::Zero(u.size());
+    Triplets              h;
+    Derivatives           d;
+    d.value = kappa_ > 0 ? reference_measure_barrier(mesh_, u, w_hat_, kappa_, &g, &h, true) : 0.0;
+    Eigen::SparseMatrix<double> full(u.size(), u.size());
+    full.setFromTriplets(h.begin(), h.end());
+    d.gradient = basis_.transpose() * g;
+    d.hessian  = basis_.transpose() * full * basis_;
+    return d;
+  }
+
+  template <int dim>
+  std::pair<double, double> MeasureBarrierModel<dim>::best_fraction(const Eigen::VectorXd &p, const Eigen::VectorXd &d,
+                                                                    const double value_at_p, const double alpha_max,
+                                                                    const double slope, const double curvature) const
+  {
+    const Eigen::VectorXd     u = u_ + basis_ * p, du = basis_ * d;
+    std::pair<double, double> best{alpha_max, std::numeric_limits<double>::infinity()};
+    // Uniform fractions, then halvings down to 2^-40: a cell at the barrier's onset may only
+    // admit a tiny step along a direction that ignores it.
+    constexpr int uniform = 32, halvings = 40;
+    for (int k = 0; k < uniform + halvings; ++k)
+      {
+        const double alpha =
+          alpha_max * (k < uniform ? double(uniform - k) / uniform : std::ldexp(1.0, -(k - uniform + 6)));
+        double change = alpha * slope + 0.5 * alpha * alpha * curvature;
+        if (kappa_ > 0)
+          change += value_at(Eigen::VectorXd(u + alpha * du)) - value_at_p;
+        if (change < best.second)
+          best = {alpha, change};
+      }
+    return best;
   }
 
   template class MeasureBarrierModel<1>;

@@ -1,10 +1,18 @@
 #include <ritr/adaptivity/outer_model.h>
 #include <ritr/solver/steihaug_cg.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace ritr
 {
+  namespace
+  {
+    // At most this many Newton iterations of the model per proposal: each costs a CG on S,
+    // far less than the trial's inner solve.
+    constexpr int max_model_iterations = 8;
+  } // namespace
+
   template <int dim>
   OuterModel<dim>::OuterModel(const ReducedHessian &hessian, const MeasureBarrierModel<dim> &barrier,
                               const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis,
@@ -15,16 +23,21 @@ namespace ritr
     , preconditioner_(preconditioner)
   {
     sigma_ = std::max(std::abs(g.dot(hessian.apply(g))) / std::max(g.squaredNorm(), 1e-300), 1e-300);
-    build_preconditioner(barrier);
+    metric_ = metric(barrier.at_point().hessian + barrier.secants());
   }
 
   template <int dim>
-  void OuterModel<dim>::build_preconditioner(const MeasureBarrierModel<dim> &barrier)
+  Eigen::SparseMatrix<double> OuterModel<dim>::metric(const Eigen::SparseMatrix<double> &barrier_hessian) const
   {
     Eigen::SparseMatrix<double> identity(g_.size(), g_.size());
     identity.setIdentity();
-    metric_ = barrier.stiffness() + sigma_ * identity;
-    Eigen::SparseMatrix<double> lower = metric_.template triangularView<Eigen::Lower>();
+    return barrier_hessian + sigma_ * identity;
+  }
+
+  template <int dim>
+  void OuterModel<dim>::factorize_preconditioner(const Eigen::SparseMatrix<double> &metric)
+  {
+    Eigen::SparseMatrix<double> lower = metric.template triangularView<Eigen::Lower>();
     lower.makeCompressed();
     preconditioner_.factorize(lower);
   }
@@ -37,41 +50,85 @@ namespace ritr
 
   template <int dim>
   typename OuterModel<dim>::Step OuterModel<dim>::propose(const double radius, const double forcing,
-                                                          const double epsilon_r,
-                                                          const std::function<double(const Eigen::VectorXd &)> &step_filter,
+                                                          const double epsilon_r, const StepFilter &step_filter,
                                                           MeasureBarrierModel<dim> &barrier)
   {
-    Step step;
-    const LinearMap apply = [&](const Eigen::VectorXd &p) {
-      return Eigen::VectorXd(hessian_.apply(p) + barrier.apply_secants(p));
-    };
+    const auto &base = barrier.at_point();
+    // The region's norm, with the secants that earlier proposals added; fixed while p grows.
+    metric_ = metric(base.hessian + barrier.secants());
+    const double   region = std::sqrt(sigma_) * radius;  // in the norm of metric_
+    const unsigned max_cg = std::max<Eigen::Index>(g_.size(), 1);
     const LinearMap precondition = [&](const Eigen::VectorXd &v) { return preconditioner_.solve(v); };
-    const double    region       = std::sqrt(sigma_) * radius;
-    const unsigned  max_cg       = std::max<Eigen::Index>(g_.size(), 1);
-    for (int refinement = 0;; ++refinement)
+    // The rest of R (all but the barrier): its gradient at u and its Hessian.
+    const Eigen::VectorXd g_rest     = g_ - base.gradient;
+    const auto            apply_rest = [&](const Eigen::VectorXd &d) {
+      return Eigen::VectorXd(hessian_.apply(d) - base.hessian * d);
+    };
+    Eigen::VectorXd p = Eigen::VectorXd::Zero(g_.size()), rest_p = p;  // rest_p: the rest's Hessian times p
+    auto            at_p = base;
+    // CG from p on the model's Hessian there, with the secants.
+    const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance) {
+      factorize_preconditioner(metric(at_p.hessian + barrier.secants()));
+      const LinearMap apply = [&](const Eigen::VectorXd &v) {
+        return Eigen::VectorXd(apply_rest(v) + at_p.hessian * v + barrier.apply_secants(v));
+      };
+      return steihaug_cg(apply, model_gradient, region, tolerance, max_cg, precondition);
+    };
+
+    Step           step;
+    Eigen::VectorXd model_gradient = g_;
+    SteihaugResult cg = newton_direction(model_gradient, forcing * g_.norm());
+    if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
       {
-        SteihaugResult cg = steihaug_cg(apply, g_, region, forcing * g_.norm(), max_cg, precondition);
-        if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
-          cg = steihaug_cg(apply, g_, region, 1e-8 * g_.norm(), max_cg, precondition);
-        step.p      = cg.step;
-        step.du     = basis_ * cg.step;
-        step.newton = cg.interior;
-        step.converged = cg.interior && step.du.template lpNorm<Eigen::Infinity>() <= epsilon_r;
-        if (step.converged)
-          return step;
-        // The model along the step: quadratic for all but the barrier, whose actual change
-        // it takes; the best admissible fraction of the step.
-        const double alpha_max = step_filter(step.du);
-        const double slope     = (g_ - barrier.gradient()).dot(cg.step);
-        const double curvature = cg.step.dot(hessian_.apply(cg.step)) - barrier.curvature(cg.step);
-        const auto [alpha, predicted] = barrier.best_fraction(cg.step, alpha_max, slope, curvature);
-        step.p *= alpha;
-        step.du *= alpha;
-        step.predicted = predicted;
-        if (alpha >= 0.5 * alpha_max || refinement == 3 || !barrier.add_secants(alpha_max * cg.step))
-          return step;
-        build_preconditioner(barrier);
+        cg      = newton_direction(model_gradient, 1e-8 * g_.norm());
+        step.du = basis_ * cg.step;
+        if (cg.interior && step.du.template lpNorm<Eigen::Infinity>() <= epsilon_r)
+          {
+            step.p      = cg.step;
+            step.newton = step.converged = true;
+            return step;
+          }
       }
+    for (int k = 0, refinements = 0; k < max_model_iterations;)
+      {
+        const Eigen::VectorXd d = cg.step;
+        // The step's largest fraction inside the region, |p + a d|_M <= region, and admissible.
+        const Eigen::VectorXd md = metric_ * d;
+        const double pMp = p.dot(metric_ * p), pMd = p.dot(md), dMd = std::max(d.dot(md), 1e-300);
+        const double to_boundary =
+          (-pMd + std::sqrt(std::max(pMd * pMd + dMd * (region * region - pMp), 0.0))) / dMd;
+        const double          alpha_max = std::min({1.0, to_boundary, step_filter(basis_ * p, basis_ * d)});
+        const Eigen::VectorXd rest_d    = apply_rest(d);
+        const auto [alpha, change] = barrier.best_fraction(p, d, at_p.value, alpha_max, (g_rest + rest_p).dot(d),
+                                                           d.dot(rest_d));
+        // Cut to less than half by the barrier: the cells it drove in get secants and CG
+        // runs again from p.
+        if (alpha < 0.5 * alpha_max && refinements < 3 && barrier.add_secants(p, alpha_max * d))
+          {
+            ++refinements;
+            cg      = newton_direction(model_gradient, forcing * g_.norm());
+            continue;
+          }
+        ++k;
+        if (!(change < 0))
+          break;  // no decrease along d: p is the model's best
+        p += alpha * d;
+        rest_p += alpha * rest_d;
+        step.predicted += change;
+        at_p           = barrier.at(p);
+        model_gradient = g_rest + rest_p + at_p.gradient;
+        // Inside the region with a small model gradient: a Newton step of R.
+        const bool on_boundary = alpha >= to_boundary * (1 - 1e-12);
+        step.newton            = !on_boundary && model_gradient.norm() <= forcing * g_.norm();
+        if (step.newton || on_boundary || change > -1e-3 * std::abs(step.predicted))
+          break;
+        // The next Newton step of the model, from p; the region's norm stays that of u, so
+        // CG's own region is a bound, cut to it above.
+        cg = newton_direction(model_gradient, forcing * g_.norm());
+      }
+    step.p  = p;
+    step.du = basis_ * p;
+    return step;
   }
 
   template class OuterModel<1>;

@@ -147,13 +147,22 @@ namespace ritr
   template <int dim>
   double RitrSolver<dim>::step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const
   {
+    return step_filter(u, Eigen::VectorXd::Zero(du.size()), du);
+  }
+
+  template <int dim>
+  double RitrSolver<dim>::step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du,
+                                      const Eigen::VectorXd &ddu) const
+  {
     if (!settings_.geometric_admissibility)
       return 1.0;
+    std::vector<double> floor(mesh_.n_cells());
+    for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+      floor[c] = 0.2 * simplex_measure<dim, double>(cell_nodes<dim>(u, mesh_.cells[c]));
     const auto admissible = [&](const double alpha) {
-      const Eigen::VectorXd trial = u + alpha * du;
-      for (const auto &cell : mesh_.cells)
-        if (simplex_measure<dim, double>(cell_nodes<dim>(trial, cell)) <
-            0.2 * simplex_measure<dim, double>(cell_nodes<dim>(u, cell)))
+      const Eigen::VectorXd trial = u + du + alpha * ddu;
+      for (unsigned int c = 0; c < mesh_.n_cells(); ++c)
+        if (simplex_measure<dim, double>(cell_nodes<dim>(trial, mesh_.cells[c])) < floor[c])
           return false;
       return true;
     };
@@ -290,7 +299,9 @@ namespace ritr
     double       radius         = initial_radius;
     double       first_gradient = 0;
     MeasureBarrierModel<dim> barrier(mesh_, basis_, w_hat_, measure_barrier_.stiffness());
-    const auto filter = [&](const Eigen::VectorXd &du) { return step_filter(r.u, du); };
+    const auto filter = [&](const Eigen::VectorXd &du, const Eigen::VectorXd &ddu) {
+      return step_filter(r.u, du, ddu);
+    };
     for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
       {
         terms_.set_reference(r.u);

@@ -2,13 +2,15 @@
 // algebra (interior Newton step, boundary steps, negative curvature), and the matrix-free
 // reduced Hessian against the dense Schur complement it stands for, and the folding of
 // prescribed entries that follow u (sliding Dirichlet nodes) against finite differences of
-// the composition.
+// the composition; and the outer model's step against the measure barrier it keeps exact.
+#include <ritr/adaptivity/outer_model.h>
 #include <ritr/adaptivity/reduced_hessian.h>
 #include <ritr/solver/steihaug_cg.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
 
 #include "finite_difference.h"
@@ -219,4 +221,88 @@ TEST(ReducedHessian, FoldedFollowingEntriesAreTheComposition)
   for (std::size_t a = 0; a < free_state.size(); ++a)
     free_rows.row(a) = coupling.row(free_state[a]);
   EXPECT_LT(test_support::relative_error(free_rows, test_support::fd_jacobian(dR_dy, u, 1e-4)), 1e-6);
+}
+
+namespace
+{
+  // One reference triangle (0,0), (1,0), (0,1) whose third node a spring pulls to (0.8, 0.15):
+  // the pull would shrink the cell to 0.075, below the measure barrier's threshold 0.2, so
+  // the model's minimum has the node slide to x = 0.8 while the barrier holds its height.
+  SimplexMesh<2> unit_triangle()
+  {
+    SimplexMesh<2> mesh;
+    mesh.reference.resize(6);
+    mesh.reference << 0, 0, 1, 0, 0, 1;
+    mesh.cells = {{0, 1, 2}};
+    return mesh;
+  }
+
+  // The outer model at the unmoved triangle. There is no state: S is the spring's Hessian
+  // (the barrier's is 0 there, outside its threshold).
+  struct CollapsingTriangle
+  {
+    const double                 w_hat = 0.2, kappa = 1.0, spring = 1.0;
+    const SimplexMesh<2>         mesh  = unit_triangle();
+    Eigen::SparseMatrix<double>  basis;
+    Eigen::VectorXd              u = mesh.reference, target = u, g;
+    const std::vector<int>       free_state{0};
+    SparseCholesky               state_cholesky, preconditioner;
+    MeasureBarrierModel<2>       barrier{mesh, basis, w_hat, kappa};
+    std::optional<ReducedHessian> S;
+    std::optional<OuterModel<2>>  model;
+
+    CollapsingTriangle()
+    {
+      basis.resize(6, 6);
+      basis.setIdentity();
+      target.tail(2) << 0.8, 0.15;
+      g = spring * (u - target);
+      barrier.set_point(u);
+      Triplets huu;
+      for (int i = 0; i < 6; ++i)
+        huu.emplace_back(i, i, spring);
+      S.emplace(huu, Triplets{{0, 0, 1.0}}, Triplets{}, 1, free_state, basis, state_cholesky);
+      model.emplace(*S, barrier, g, basis, preconditioner);
+    }
+    // The spring and the barrier at v, computed directly.
+    double objective(const Eigen::VectorXd &v) const
+    {
+      return 0.5 * spring * (v - target).squaredNorm() + reference_measure_barrier(mesh, v, w_hat, kappa);
+    }
+    OuterModel<2>::Step propose(const double radius)
+    {
+      const auto no_filter = [](const Eigen::VectorXd &, const Eigen::VectorXd &) { return 1.0; };
+      return model->propose(radius, 1e-4, 1e-12, no_filter, barrier);
+    }
+  };
+} // namespace
+
+TEST(OuterModel, TheStepSlidesAlongTheMeasureBarrierToTheModelsMinimum)
+{
+  CollapsingTriangle t;
+  ASSERT_EQ(t.barrier.at_point().value, 0.0);  // the cell starts outside the barrier
+  const auto step = t.propose(10.0);
+
+  const Eigen::VectorXd end = t.u + step.du;
+  // The prediction is the model's actual change, and the model is R here.
+  EXPECT_NEAR(step.predicted, t.objective(end) - t.objective(t.u), 1e-12);
+  // A minimum of R: its gradient by finite differences vanishes to the forcing term.
+  const auto R = [&](const Eigen::VectorXd &v) { return t.objective(v); };
+  EXPECT_LT(test_support::fd_gradient(R, end, 1e-7).norm(), 1e-3 * t.g.norm());
+  EXPECT_NEAR(end[4], 0.8, 5e-3);  // slid along the barrier (a cut of the straight pull stops short)
+  const double w = 0.5 * end[5];   // the cell's measure: half the node's height
+  EXPECT_GT(w, 0.075);             // held above where the spring alone would take it
+  EXPECT_LT(w, t.w_hat);           // inside the barrier, where it balances the spring
+}
+
+TEST(OuterModel, AStepStaysInsideItsRegion)
+{
+  CollapsingTriangle t;
+  for (const double radius : {0.05, 0.3, 0.6})
+    {
+      const auto step = t.propose(radius);
+      EXPECT_LE(t.model->length(step.p), radius * (1 + 1e-9));
+      EXPECT_LT(step.predicted, 0.0);
+      EXPECT_NEAR(step.predicted, t.objective(t.u + step.du) - t.objective(t.u), 1e-12);
+    }
 }

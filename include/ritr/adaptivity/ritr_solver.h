@@ -108,6 +108,8 @@ namespace ritr
     double objective(const Eigen::VectorXd &z, const Eigen::VectorXd &u);
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
     double step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du) const;
+    // The same for the step ddu taken after du from u (cells measured against u).
+    double step_filter(const Eigen::VectorXd &u, const Eigen::VectorXd &du, const Eigen::VectorXd &ddu) const;
     double transfer_seconds() const;
     // The step's targets (at the initial reference) with the sliding Dirichlet nodes' moved
     // to reference u.
