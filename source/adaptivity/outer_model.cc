@@ -14,16 +14,14 @@ namespace ritr
   } // namespace
 
   template <int dim>
-  OuterModel<dim>::OuterModel(const ReducedHessian &hessian, const MeasureBarrierModel<dim> &barrier,
-                              const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis,
-                              SparseCholesky &preconditioner)
+  OuterModel<dim>::OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g,
+                              const Eigen::SparseMatrix<double> &basis, SparseCholesky &preconditioner)
     : hessian_(hessian)
     , g_(g)
     , basis_(basis)
     , preconditioner_(preconditioner)
   {
     sigma_ = std::max(std::abs(g.dot(hessian.apply(g))) / std::max(g.squaredNorm(), 1e-300), 1e-300);
-    metric_ = metric(barrier.at_point().hessian + barrier.secants());
   }
 
   template <int dim>
@@ -66,9 +64,10 @@ namespace ritr
     };
     Eigen::VectorXd p = Eigen::VectorXd::Zero(g_.size()), rest_p = p;  // rest_p: the rest's Hessian times p
     auto            at_p = base;
-    // CG from p on the model's Hessian there, with the secants.
+    // CG from p on the model's Hessian there, with the secants; the preconditioner is
+    // refactorised whenever either changes.
+    const auto refactorize = [&]() { factorize_preconditioner(metric(at_p.hessian + barrier.secants())); };
     const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance) {
-      factorize_preconditioner(metric(at_p.hessian + barrier.secants()));
       const LinearMap apply = [&](const Eigen::VectorXd &v) {
         return Eigen::VectorXd(apply_rest(v) + at_p.hessian * v + barrier.apply_secants(v));
       };
@@ -77,6 +76,7 @@ namespace ritr
 
     Step           step;
     Eigen::VectorXd model_gradient = g_;
+    refactorize();
     SteihaugResult cg = newton_direction(model_gradient, forcing * g_.norm());
     if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
       {
@@ -95,8 +95,7 @@ namespace ritr
         // The step's largest fraction inside the region, |p + a d|_M <= region, and admissible.
         const Eigen::VectorXd md = metric_ * d;
         const double pMp = p.dot(metric_ * p), pMd = p.dot(md), dMd = std::max(d.dot(md), 1e-300);
-        const double to_boundary =
-          (-pMd + std::sqrt(std::max(pMd * pMd + dMd * (region * region - pMp), 0.0))) / dMd;
+        const double to_boundary = fraction_to_boundary(pMp, pMd, dMd, region);
         const double          alpha_max = std::min({1.0, to_boundary, step_filter(basis_ * p, basis_ * d)});
         const Eigen::VectorXd rest_d    = apply_rest(d);
         const auto [alpha, change] = barrier.best_fraction(p, d, at_p.value, alpha_max, (g_rest + rest_p).dot(d),
@@ -106,7 +105,8 @@ namespace ritr
         if (alpha < 0.5 * alpha_max && refinements < 3 && barrier.add_secants(p, alpha_max * d))
           {
             ++refinements;
-            cg      = newton_direction(model_gradient, forcing * g_.norm());
+            refactorize();
+            cg = newton_direction(model_gradient, forcing * g_.norm());
             continue;
           }
         ++k;
@@ -124,6 +124,7 @@ namespace ritr
           break;
         // The next Newton step of the model, from p; the region's norm stays that of u, so
         // CG's own region is a bound, cut to it above.
+        refactorize();
         cg = newton_direction(model_gradient, forcing * g_.norm());
       }
     step.p  = p;

@@ -18,9 +18,7 @@ namespace ritr
     // products with M per iteration.
     double model = 0, rz = residual.dot(z), pMp = 0, pMd = 0, dMd = rz;
     // tau >= 0 with |p + tau d|_M = radius (p inside the region).
-    const auto to_boundary = [&]() {
-      return (-pMd + std::sqrt(std::max(pMd * pMd + dMd * (radius * radius - pMp), 0.0))) / dMd;
-    };
+    const auto to_boundary = [&]() { return fraction_to_boundary(pMp, pMd, dMd, radius); };
     const auto finish = [&](const Eigen::VectorXd &step, const double change, const double step_norm_squared) {
       result.step             = step;
       result.predicted_change = change;

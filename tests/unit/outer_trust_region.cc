@@ -233,7 +233,7 @@ namespace
     SimplexMesh<2> mesh;
     mesh.reference.resize(6);
     mesh.reference << 0, 0, 1, 0, 0, 1;
-    mesh.cells = {{0, 1, 2}};
+    mesh.cells = {{{0, 1, 2}}};
     return mesh;
   }
 
@@ -262,7 +262,7 @@ namespace
       for (int i = 0; i < 6; ++i)
         huu.emplace_back(i, i, spring);
       S.emplace(huu, Triplets{{0, 0, 1.0}}, Triplets{}, 1, free_state, basis, state_cholesky);
-      model.emplace(*S, barrier, g, basis, preconditioner);
+      model.emplace(*S, g, basis, preconditioner);
     }
     // The spring and the barrier at v, computed directly.
     double objective(const Eigen::VectorXd &v) const

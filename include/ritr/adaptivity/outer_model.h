@@ -25,8 +25,8 @@ namespace ritr
   {
   public:
     // `g` in basis coordinates; `preconditioner` keeps its symbolic analysis across iterations.
-    OuterModel(const ReducedHessian &hessian, const MeasureBarrierModel<dim> &barrier, const Eigen::VectorXd &g,
-               const Eigen::SparseMatrix<double> &basis, SparseCholesky &preconditioner);
+    OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis,
+               SparseCholesky &preconditioner);
 
     struct Step
     {
@@ -49,6 +49,7 @@ namespace ritr
     Step propose(double radius, double forcing, double epsilon_r, const StepFilter &step_filter,
                  MeasureBarrierModel<dim> &barrier);
 
+    // The length of a step of the last proposal (in its region's norm).
     double length(const Eigen::VectorXd &p) const;
 
   private:
@@ -62,6 +63,6 @@ namespace ritr
     const Eigen::SparseMatrix<double> &basis_;
     SparseCholesky                    &preconditioner_;
     double                             sigma_ = 0;
-    Eigen::SparseMatrix<double>        metric_;  // the region's norm, at u
+    Eigen::SparseMatrix<double>        metric_;  // the region's norm, at u, set by propose
   };
 } // namespace ritr

@@ -35,6 +35,13 @@ namespace ritr
     return std::min(cap, std::sqrt(gradient_norm / std::max(first_gradient_norm, 1e-300)));
   }
 
+  // The largest tau >= 0 with |p + tau d|_M <= radius, from p.M p, p.M d and d.M d (p inside
+  // the region).
+  inline double fraction_to_boundary(const double pMp, const double pMd, const double dMd, const double radius)
+  {
+    return (-pMd + std::sqrt(std::max(pMd * pMd + dMd * (radius * radius - pMp), 0.0))) / dMd;
+  }
+
   // `precondition` applies M^-1 (empty: M = I).
   SteihaugResult steihaug_cg(const LinearMap &apply, const Eigen::VectorXd &g, double radius, double tolerance,
                              unsigned int max_iterations, const LinearMap &precondition = {});
