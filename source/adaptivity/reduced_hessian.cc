@@ -4,7 +4,7 @@ namespace ritr
 {
   ReducedHessian::ReducedHessian(const Triplets &huu, const Triplets &hxx, const Triplets &hxu, const Eigen::Index n_z,
                                  const std::vector<int> &free_state, const Eigen::SparseMatrix<double> &basis,
-                                 SparseCholesky &cholesky)
+                                 SparseCholesky &cholesky, const Eigen::Index dense_limit)
     : free_state_(free_state)
     , n_z_(n_z)
     , cholesky_(cholesky)
@@ -34,10 +34,18 @@ namespace ritr
     xu.setFromTriplets(free_xu.begin(), free_xu.end());
     coupling_ = xu * basis;
     shift_    = cholesky_.factorize(xx);
+    if (basis.cols() <= dense_limit)
+      {
+        const Eigen::MatrixXd response = cholesky_.solve_columns(Eigen::MatrixXd(coupling_));
+        dense_                         = Eigen::MatrixXd(huu_) - coupling_.transpose() * response;
+        dense_                         = 0.5 * (dense_ + dense_.transpose()).eval();  // symmetric to round-off
+      }
   }
 
   Eigen::VectorXd ReducedHessian::apply(const Eigen::VectorXd &p) const
   {
+    if (dense())
+      return dense_ * p;
     const Eigen::VectorXd response = cholesky_.solve(coupling_ * p);  // -dx on the free state
     return huu_ * p - coupling_.transpose() * response;
   }

@@ -5,6 +5,18 @@
 
 namespace ritr
 {
+  template <typename F>
+  decltype(auto) SparseCholesky::with_llt(F &&f)
+  {
+    return kind_ == Kind::supernodal ? f(supernodal_) : f(simplicial_);
+  }
+
+  template <typename F>
+  decltype(auto) SparseCholesky::with_llt(F &&f) const
+  {
+    return kind_ == Kind::supernodal ? f(supernodal_) : f(simplicial_);
+  }
+
   bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double> &m) const
   {
     return analysed_ && static_cast<std::size_t>(m.outerSize() + 1) == outer_.size() &&
@@ -21,35 +33,40 @@ namespace ritr
       return 0.0;  // every entry prescribed: nothing to factorize (CHOLMOD fails on it)
     if (!same_pattern(matrix))
       {
-        llt_.analyzePattern(matrix);
+        with_llt([&](auto &llt) { llt.analyzePattern(matrix); });
         outer_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
         inner_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
         analysed_ = true;
         ++n_analyses_;
       }
-    double shift = 0;
-    llt_.cholmod().print = 0;  // a failed attempt is expected here; no warning on stderr
-    llt_.setShift(0.0);
-    llt_.factorize(matrix);
-    ++n_factorizations_;
-    if (llt_.info() == Eigen::Success)
+    // A failed attempt is expected here (print 0: no warning on stderr).
+    const auto factorize_shifted = [&](const double shift) {
+      return with_llt([&](auto &llt) {
+        llt.cholmod().print = 0;
+        llt.setShift(shift);
+        llt.factorize(matrix);
+        ++n_factorizations_;
+        return llt.info() == Eigen::Success;
+      });
+    };
+    if (factorize_shifted(0.0))
       return 0.0;
     // Projected Hessians are only semi-definite (e.g. statics with a free rigid mode):
     // regularise relative to the diagonal's scale.
     const double scale = std::max(matrix.diagonal().cwiseAbs().maxCoeff(), 1e-300);
-    for (shift = 1e-12 * scale; shift < 1e6 * scale; shift *= 100)
-      {
-        llt_.setShift(shift);
-        llt_.factorize(matrix);
-        ++n_factorizations_;
-        if (llt_.info() == Eigen::Success)
-          return shift;
-      }
+    for (double shift = 1e-12 * scale; shift < 1e6 * scale; shift *= 100)
+      if (factorize_shifted(shift))
+        return shift;
     throw std::runtime_error("the Newton system could not be factorized");
   }
 
   Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd &rhs) const
   {
-    return rhs.size() == 0 ? rhs : Eigen::VectorXd(llt_.solve(rhs));
+    return rhs.size() == 0 ? rhs : with_llt([&](const auto &llt) { return Eigen::VectorXd(llt.solve(rhs)); });
+  }
+
+  Eigen::MatrixXd SparseCholesky::solve_columns(const Eigen::MatrixXd &rhs) const
+  {
+    return rhs.size() == 0 ? rhs : with_llt([&](const auto &llt) { return Eigen::MatrixXd(llt.solve(rhs)); });
   }
 } // namespace ritr

@@ -2,7 +2,8 @@
 // algebra (interior Newton step, boundary steps, negative curvature), and the matrix-free
 // reduced Hessian against the dense Schur complement it stands for, and the folding of
 // prescribed entries that follow u (sliding Dirichlet nodes) against finite differences of
-// the composition; and the outer model's step against the measure barrier it keeps exact.
+// the composition; and the outer model's step against the measure barrier it keeps exact;
+// and the sparse Cholesky factorizations (supernodal and simplicial) these rest on.
 #include <ritr/adaptivity/outer_model.h>
 #include <ritr/adaptivity/reduced_hessian.h>
 #include <ritr/solver/steihaug_cg.h>
@@ -126,6 +127,40 @@ TEST(SteihaugCG, APreconditionedRegionIsMeasuredInItsMetric)
     }
 }
 
+TEST(SparseCholesky, BothKindsSolveAndRegulariseAlike)
+{
+  // Definite: exact solves, one symbolic analysis for two matrices of one pattern, and many
+  // right-hand sides at once. Semi-definite (a zero row): the same shift from both kinds.
+  const Eigen::MatrixXd definite = random_symmetric(9, 10.0, 3);
+  Eigen::MatrixXd       semi     = definite;
+  semi.row(4).setZero();
+  semi.col(4).setZero();
+  const Eigen::VectorXd b = random_vector(9, 4);
+  const Eigen::MatrixXd B = definite.leftCols(3);
+  std::optional<double> first_shift;
+  for (const auto kind : {SparseCholesky::Kind::supernodal, SparseCholesky::Kind::simplicial})
+    {
+      SparseCholesky                    cholesky(kind);
+      const Eigen::SparseMatrix<double> lower = Eigen::MatrixXd(definite.triangularView<Eigen::Lower>()).sparseView();
+      EXPECT_EQ(cholesky.factorize(lower), 0.0);
+      EXPECT_LT((definite * cholesky.solve(b) - b).norm(), 1e-12 * b.norm());
+      EXPECT_LT((definite * cholesky.solve_columns(B) - B).norm(), 1e-12 * B.norm());
+      const Eigen::SparseMatrix<double> doubled = 2 * lower;
+      EXPECT_EQ(cholesky.factorize(doubled), 0.0);
+      EXPECT_LT((2 * definite * cholesky.solve(b) - b).norm(), 1e-12 * b.norm());
+      EXPECT_EQ(cholesky.n_symbolic_analyses(), 1u);
+      Eigen::SparseMatrix<double> semi_lower = Eigen::MatrixXd(semi.triangularView<Eigen::Lower>()).sparseView();
+      semi_lower.makeCompressed();
+      const double shift = cholesky.factorize(semi_lower);
+      EXPECT_GT(shift, 0.0);
+      if (first_shift)
+        {
+          EXPECT_EQ(shift, *first_shift);
+        }
+      first_shift = shift;
+    }
+}
+
 TEST(ReducedHessian, MatchesTheDenseSchurComplement)
 {
   // State of 10 entries, 2 of them prescribed; reference of 8 entries moving in a basis of 5.
@@ -143,6 +178,11 @@ TEST(ReducedHessian, MatchesTheDenseSchurComplement)
   const Eigen::SparseMatrix<double> sparse_basis = basis.sparseView();
   const ReducedHessian S(triplets(huu), triplets(hxx), triplets(hxu), n_z, free_state, sparse_basis, cholesky);
   EXPECT_EQ(S.state_shift(), 0.0);
+  EXPECT_TRUE(S.dense());
+  SparseCholesky       cholesky_free;  // the matrix-free path, a back-substitution per product
+  const ReducedHessian S_free(triplets(huu), triplets(hxx), triplets(hxu), n_z, free_state, sparse_basis,
+                              cholesky_free, 0);
+  EXPECT_FALSE(S_free.dense());
 
   const int       n_f = free_state.size();
   Eigen::MatrixXd hxx_f(n_f, n_f), hxu_f(n_f, n_u);
@@ -157,6 +197,7 @@ TEST(ReducedHessian, MatchesTheDenseSchurComplement)
     {
       const Eigen::VectorXd p = random_vector(n_b, seed);
       EXPECT_LT((S.apply(p) - dense * p).norm(), 1e-12 * (dense * p).norm());
+      EXPECT_LT((S_free.apply(p) - dense * p).norm(), 1e-12 * (dense * p).norm());
       // The response of the state: -H_xx^-1 H_xu B p on the free entries, 0 on prescribed ones.
       const Eigen::VectorXd response = -hxx_f.ldlt().solve(hxu_f * (basis * p));
       const Eigen::VectorXd dz       = S.state_response(p);

@@ -3,8 +3,12 @@
 //
 //   S = B^T (H_uu - H_xu^T H_xx^-1 H_xu) B      (H_xx, H_xu restricted to the free state)
 //
-// applied matrix-free: one sparse Cholesky factorization of H_xx per outer iteration, then a
-// back-substitution per product. The same factor gives the implicit-function response of x,
+// One sparse Cholesky factorization of H_xx per outer iteration. Up to `dense_limit` reference
+// unknowns S is then formed once, with one blocked solve for all its columns, and applied as a
+// dense matrix: the outer model applies S hundreds of times per outer iteration, and each
+// single back-substitution costs more in CHOLMOD's and BLAS's per-call overhead than in
+// arithmetic (the 209-vertex ball: ~80 us per product, ~100 products per CG). Larger
+// problems apply it matrix-free, a back-substitution per product. The same factor gives the implicit-function response of x,
 // dx = -H_xx^-1 H_xu B p, which predicts the state at a trial mesh.
 #include <ritr/solver/newton.h>
 #include <ritr/solver/sparse_cholesky.h>
@@ -23,7 +27,7 @@ namespace ritr
     // that are not prescribed. Reuses `cholesky`'s symbolic analysis while the pattern holds.
     ReducedHessian(const Triplets &huu, const Triplets &hxx, const Triplets &hxu, Eigen::Index n_z,
                    const std::vector<int> &free_state, const Eigen::SparseMatrix<double> &basis,
-                   SparseCholesky &cholesky);
+                   SparseCholesky &cholesky, Eigen::Index dense_limit = 2000);
 
     // S p for p in basis coordinates.
     Eigen::VectorXd apply(const Eigen::VectorXd &p) const;
@@ -32,10 +36,13 @@ namespace ritr
     Eigen::VectorXd state_response(const Eigen::VectorXd &p) const;
     // Multiple of the identity that had to be added to H_xx (0: it was positive definite).
     double state_shift() const { return shift_; }
+    // Whether S was formed densely.
+    bool dense() const { return dense_.size() > 0; }
 
   private:
     Eigen::SparseMatrix<double> huu_;       // B^T H_uu B
     Eigen::SparseMatrix<double> coupling_;  // H_xu B on the free state rows
+    Eigen::MatrixXd             dense_;     // S, when formed
     const std::vector<int>     &free_state_;
     Eigen::Index                n_z_;
     SparseCholesky             &cholesky_;
