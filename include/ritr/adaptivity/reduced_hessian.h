@@ -5,11 +5,12 @@
 //
 // One sparse Cholesky factorization of H_xx per outer iteration. Up to `dense_limit` reference
 // unknowns S is then formed once, with one blocked solve for all its columns, and applied as a
-// dense matrix: the outer model applies S hundreds of times per outer iteration, and each
-// single back-substitution costs more in CHOLMOD's and BLAS's per-call overhead than in
-// arithmetic (the 209-vertex ball: ~80 us per product, ~100 products per CG). Larger
-// problems apply it matrix-free, a back-substitution per product. The same factor gives the implicit-function response of x,
-// dx = -H_xx^-1 H_xu B p, which predicts the state at a trial mesh.
+// dense matrix: the outer model applies S hundreds of times per outer iteration, and a single
+// back-substitution costs more in CHOLMOD's and BLAS's per-call overhead than in arithmetic
+// (the 209-vertex ball: ~80 us per CG iteration, ~100 iterations per CG). Larger problems
+// apply it matrix-free, a back-substitution per product. The same factor gives the
+// implicit-function response of x, dx = -H_xx^-1 H_xu B p, which predicts the state at a
+// trial mesh.
 #include <ritr/solver/newton.h>
 #include <ritr/solver/sparse_cholesky.h>
 
