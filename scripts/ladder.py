@@ -5,7 +5,8 @@
 
 SCENE.prm is the r-ITR run (its `Adaptivity/enabled` is forced on). Fixed rung k is the
 same scene without adaptivity and with every body refined k more times (edge subdivision,
-the paper's ladder). Each run is its own process; wall time and peak resident memory are
+the paper's ladder); `--fixed-subdivide M` adds rungs between those with every body's
+`subdivisions` multiplied by M. Each run is its own process; wall time and peak resident memory are
 taken from outside it (wait4), and so is the start-up baseline (`ritr --help`), which memory
 ratios subtract. Accuracy is the mean over frames of the Hausdorff distance between deformed
 boundaries (`ritr-compare`) to the finest fixed rung. The headline: the coarsest fixed rung at
@@ -52,12 +53,18 @@ def body_sections(text):
     return sorted({path.split("/")[0] for path in entries(text) if path.startswith("Body ")}) or ["Body 0"]
 
 
-def rung_overrides(scene_text, k, adaptivity):
-    """The overrides of rung k: adaptivity on or off, every body refined k more times."""
+def rung_overrides(scene_text, k, adaptivity, factor=1):
+    """The overrides of rung k: adaptivity on or off, every body refined k more times and, for a
+    factor above 1, its `subdivisions` multiplied by it (rungs between the powers of two)."""
     settings = entries(scene_text)
     overrides = {"Adaptivity/enabled": "true" if adaptivity else "false"}
     for body in body_sections(scene_text):
         overrides[f"{body}/refinements"] = str(int(settings.get(f"{body}/refinements", "0")) + k)
+        if factor != 1:
+            if f"{body}/subdivisions" not in settings:
+                raise SystemExit(f"ladder: {body} has no `subdivisions` to multiply (--fixed-subdivide)")
+            counts = [int(n) * factor for n in settings[f"{body}/subdivisions"].split(",")]
+            overrides[f"{body}/subdivisions"] = ", ".join(map(str, counts))
     return overrides
 
 
@@ -178,6 +185,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     p.add_argument("scene")
     p.add_argument("--fixed", type=int, nargs="+", required=True, help="refinements of the fixed rungs")
+    p.add_argument("--fixed-subdivide", type=int, nargs="+", default=[], metavar="M",
+                   help="further fixed rungs (not in --quick) with every body's subdivisions multiplied by M")
     p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
                    help="override for every run, e.g. 'Adaptivity/epsilon r=1e-6'")
     p.add_argument("--ritr-rungs", type=int, nargs="+", default=[0],
@@ -216,13 +225,19 @@ def main():
     os.makedirs(work, exist_ok=True)
     _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
 
-    def rung(name, k, adaptivity, extra=None):
-        overrides = {**common, **rung_overrides(scene_text, k, adaptivity), **(extra or {})}
+    def rung(name, k, adaptivity, extra=None, factor=1):
+        overrides = {**common, **rung_overrides(scene_text, k, adaptivity, factor), **(extra or {})}
         return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, adaptivity=adaptivity,
+                    **({"subdivision_factor": factor} if factor != 1 else {}),
                     **({"overrides": extra} if extra else {}))
 
-    # runs[0] is r-ITR on the scene's own mesh; further r-ITR rungs (paper Fig. 20) follow the fixed ones.
-    runs = [rung("ritr", 0, True)] + [rung(f"fixed_r{k}", k, False) for k in rungs]
+    # runs[0] is r-ITR on the scene's own mesh, the fixed rungs follow from coarsest to finest (the
+    # finest is the reference), then further r-ITR rungs (paper Fig. 20) and variants.
+    ritr = rung("ritr", 0, True)
+    fixed = [rung(f"fixed_r{k}", k, False) for k in rungs]
+    if not args.quick:
+        fixed += [rung(f"fixed_x{m}", 0, False, factor=m) for m in sorted(set(args.fixed_subdivide) - {1})]
+    runs = [ritr] + sorted(fixed, key=lambda r: r.get("n_vertices", 0))
     reference = runs[-1]
     if not args.quick:
         runs += [rung(f"ritr_r{k}", k, True) for k in sorted(set(args.ritr_rungs) - {0})]
@@ -258,7 +273,7 @@ def main():
         print("ladder: failed or broke an invariant: " + ", ".join(bad), file=sys.stderr)
         return 1
     if args.require_lower_energy:
-        same_size = {r["refinements"]: r for r in fixed_runs(runs)}
+        same_size = {r["refinements"]: r for r in fixed_runs(runs) if "subdivision_factor" not in r}
         higher = [f"{r['name']} {r['final_energy']:.8g} >= {same_size[r['refinements']]['final_energy']:.8g}"
                   for r in runs if r["adaptivity"] and r["refinements"] in same_size
                   and r["final_energy"] >= same_size[r["refinements"]]["final_energy"]]
