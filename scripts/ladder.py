@@ -227,9 +227,8 @@ def main():
 
     def rung(name, k, adaptivity, extra=None, factor=1):
         overrides = {**common, **rung_overrides(scene_text, k, adaptivity, factor), **(extra or {})}
-        return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, adaptivity=adaptivity,
-                    **({"subdivision_factor": factor} if factor != 1 else {}),
-                    **({"overrides": extra} if extra else {}))
+        return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, subdivision_factor=factor,
+                    adaptivity=adaptivity, **({"overrides": extra} if extra else {}))
 
     # runs[0] is r-ITR on the scene's own mesh, the fixed rungs follow from coarsest to finest (the
     # finest is the reference), then further r-ITR rungs (paper Fig. 20) and variants.
@@ -273,7 +272,7 @@ def main():
         print("ladder: failed or broke an invariant: " + ", ".join(bad), file=sys.stderr)
         return 1
     if args.require_lower_energy:
-        same_size = {r["refinements"]: r for r in fixed_runs(runs) if "subdivision_factor" not in r}
+        same_size = {r["refinements"]: r for r in fixed_runs(runs) if r["subdivision_factor"] == 1}
         higher = [f"{r['name']} {r['final_energy']:.8g} >= {same_size[r['refinements']]['final_energy']:.8g}"
                   for r in runs if r["adaptivity"] and r["refinements"] in same_size
                   and r["final_energy"] >= same_size[r["refinements"]]["final_energy"]]
