@@ -1,4 +1,4 @@
-"""Measurements on the last output frame of a ritr run (VTK's XML readers), for scripts/ladder.py.
+"""Measurements on the output frames of a ritr run (VTK's XML readers), for scripts/ladder.py.
 
 lowest_point: the lowest deformed height (y) of the bodies, to tell whether a run passed a gap.
 corner_distances: for each obstacle vertex that touches a body (within `touch` of its deformed
@@ -7,6 +7,8 @@ vertex on the obstacle's corner, about half an edge when the corner presses into
 paper's stamping figure). 2D only.
 centroid_heights: the height of the bodies' deformed area centroid in every output frame, with
 the frame's time (the paper's varying-friction figure). 2D only.
+kinetic_energies: the bodies' kinetic energy in every output frame, with the frame's time; it
+shows a coarse run storing and releasing energy that the fine one does not (the masticator).
 """
 import glob
 import os
@@ -89,4 +91,33 @@ def centroid_heights(directory):
     """[[time, centroid height], ...] over the frames of solution.pvd."""
     collection = xml.etree.ElementTree.parse(os.path.join(directory, "solution.pvd")).getroot()
     return [[float(d.get("timestep")), centroid_height(read_frame(os.path.join(directory, d.get("file"))))]
+            for d in collection.iter("DataSet")]
+
+
+def kinetic_energy(grid, densities):
+    """Kinetic energy 1/2 v^T M v of a frame with the consistent P1 mass matrix of its reference
+    cells (M_ij = rho |cell| (1 + delta_ij) / ((d + 1)(d + 2)) on each simplex), which is exact for
+    velocities linear in each cell. `densities`: {material id: density}."""
+    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
+    vertices_per_cell = connectivity.size // grid.GetNumberOfCells()
+    cells = connectivity.reshape(-1, vertices_per_cell)
+    reference = vtk_to_numpy(grid.GetPointData().GetArray("reference_position"))
+    velocity = vtk_to_numpy(grid.GetPointData().GetArray("velocity"))[cells]  # (cells, corners, 3)
+    corners = [reference[i] for i in cells.T]
+    edges = [c - corners[0] for c in corners[1:]]
+    if vertices_per_cell == 3:
+        measure = 0.5 * numpy.abs(edges[0][:, 0] * edges[1][:, 1] - edges[0][:, 1] * edges[1][:, 0])
+    else:
+        measure = numpy.abs(numpy.einsum("ij,ij->i", edges[0], numpy.cross(edges[1], edges[2]))) / 6
+    material = vtk_to_numpy(grid.GetCellData().GetArray("material_id")).astype(int)
+    rho = numpy.array([densities[m] for m in material])
+    # v^T M v on a cell = rho |cell| / ((d+1)(d+2)) * (sum_i |v_i|^2 + |sum_i v_i|^2).
+    quadratic = (velocity ** 2).sum(axis=(1, 2)) + (velocity.sum(axis=1) ** 2).sum(axis=1)
+    return float(0.5 * (rho * measure * quadratic).sum() / (vertices_per_cell * (vertices_per_cell + 1)))
+
+
+def kinetic_energies(directory, densities):
+    """[[time, kinetic energy], ...] over the frames of solution.pvd (see kinetic_energy)."""
+    collection = xml.etree.ElementTree.parse(os.path.join(directory, "solution.pvd")).getroot()
+    return [[float(d.get("timestep")), kinetic_energy(read_frame(os.path.join(directory, d.get("file"))), densities)]
             for d in collection.iter("DataSet")]

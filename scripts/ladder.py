@@ -16,13 +16,15 @@ over a conforming space of deformations, so the lower equilibrium is the more ac
 
 `--ritr-rungs` adds r-ITR runs on refined meshes, `--ritr-variant NAME PATH=VALUE` an r-ITR run
 on the scene's own mesh with one entry changed (e.g. the deep punch with its base's reference
-nodes held); `--pass-below` and `--corner-touch` measure
-the last frame (scripts/frame_metrics.py). `--quick` runs two steps of r-ITR and of the two
+nodes held); `--pass-below` and `--corner-touch` measure the last frame
+(scripts/frame_metrics.py). Every run of a dynamic scene also records its kinetic energy in each
+output frame (`kinetic_energy_over_time`). `--quick` runs two steps of r-ITR and of the two
 coarsest rungs, so that a scene cannot rot unnoticed. The exit code is 1 if any run failed or
 broke an invariant, or if `--require-lower-energy` finds an r-ITR run not below the fixed mesh
 of its size (the JSON is written first: a failing run stays in the results).
 """
 import argparse
+from collections import defaultdict
 import json
 import os
 import subprocess
@@ -31,8 +33,10 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from frame_metrics import centroid_heights, corner_distances, lowest_point  # noqa: E402
+from frame_metrics import centroid_heights, corner_distances, kinetic_energies, lowest_point  # noqa: E402
 from prm_variant import entries, write_variant  # noqa: E402
+
+DEFAULT_DENSITY = 1000.0  # Material N/density when a scene sets none (ritr --print-parameters)
 
 
 def scene_name(scene):
@@ -66,6 +70,14 @@ def rung_overrides(scene_text, k, adaptivity, factor=1):
             counts = [int(n) * factor for n in settings[f"{body}/subdivisions"].split(",")]
             overrides[f"{body}/subdivisions"] = ", ".join(map(str, counts))
     return overrides
+
+
+def material_densities(scene_text):
+    """{material id: density} of a scene (ritr's default density where the scene sets none)."""
+    found = entries(scene_text)
+    return defaultdict(lambda: DEFAULT_DENSITY,
+                       {int(path.split()[1].split("/")[0]): float(value) for path, value in found.items()
+                        if path.startswith("Material ") and path.endswith("/density")})
 
 
 def run_rung(args, scene_text, name, overrides, work):
@@ -241,9 +253,13 @@ def main():
     if not args.quick:
         runs += [rung(f"ritr_r{k}", k, True) for k in sorted(set(args.ritr_rungs) - {0})]
     runs += [rung(f"ritr_{name}", 0, True, dict([setting.split("=", 1)])) for name, setting in args.ritr_variant]
+    dynamic = entries(scene_text).get("mode", "dynamic") == "dynamic"
+    densities = material_densities(scene_text)
     for run in runs:
         if run is not reference:
             compare(args, run, reference)
+        if dynamic and os.path.exists(os.path.join(run["directory"], "solution.pvd")):
+            run["kinetic_energy_over_time"] = kinetic_energies(run["directory"], densities)
         if args.pass_below is not None and run["exit_code"] == 0:
             run["lowest_point"] = lowest_point(run["directory"])
             run["passes"] = run["lowest_point"] < args.pass_below

@@ -9,7 +9,8 @@ line per run) and NAME_cost.png (mean distance against wall time and against ver
 ranked by energy (statics), NAME_energy.png (final energy against vertices, wall time and peak
 memory: the paper's Fig. 16). r-ITR is marked in each. A ladder with a gap to pass
 (`--pass-below`) over more than two frames also gets NAME_centroid.png, the height of each
-run's area centroid over time.
+run's area centroid over time. A dynamic ladder over more than two frames also gets
+NAME_kinetic.png, each run's kinetic energy over time.
 """
 import argparse
 import json
@@ -117,29 +118,37 @@ def energy_plot(result, prefix):
 
 
 def ladder_line_style(run):
-    """r-ITR in bold green, fixed rungs thin."""
+    """r-ITR in bold green (its further rungs and variants dashed), fixed rungs thin."""
     label = f"{run['name']} ({run.get('n_vertices', '?')} v)"
-    return dict(color="tab:green", linewidth=2.5, label=label) if is_ritr(run) else dict(linewidth=1, label=label)
+    if not is_ritr(run):
+        return dict(linewidth=1, label=label)
+    return dict(color="tab:green", linewidth=2.5, linestyle="-" if run["name"] == "ritr" else "--", label=label)
 
 
-def centroid_plot(runs, path, line_style=ladder_line_style, pass_below=None):
-    """Each run's centroid height over time; a centroid height a run must pass marked dotted."""
+def time_series_plot(runs, key, ylabel, path, line_style=ladder_line_style, level=None):
+    """Each run's series `key` ([[time, value], ...]) over time; `level`, a value to pass, dotted."""
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     for r in runs:
-        if "centroid_over_time" in r:
-            t, y = zip(*r["centroid_over_time"])
-            ax.plot(t, y, **line_style(r))
-    if pass_below is not None:
-        ax.axhline(pass_below, color="black", linewidth=0.6, linestyle=":")
+        if r.get(key):
+            ax.plot(*zip(*r[key]), **line_style(r))
+    if level is not None:
+        ax.axhline(level, color="black", linewidth=0.6, linestyle=":")
     ax.set_xlabel("time")
-    ax.set_ylabel("centroid height")
+    ax.set_ylabel(ylabel)
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
+def centroid_plot(runs, path, line_style=ladder_line_style, pass_below=None):
+    """Each run's centroid height over time; a centroid height a run must pass marked dotted."""
+    time_series_plot(runs, "centroid_over_time", "centroid height", path, line_style, pass_below)
+
+
 def plots(result, prefix):
+    if any(len(r.get("kinetic_energy_over_time", [])) > 2 for r in result["runs"]):
+        time_series_plot(result["runs"], "kinetic_energy_over_time", "kinetic energy", prefix + "_kinetic.png")
     if result.get("pass_below") is not None and any(len(r.get("centroid_over_time", [])) > 2
                                                      for r in result["runs"]):
         # The ladder's pass test is on the lowest point, not the centroid: no line to pass here.
