@@ -71,53 +71,61 @@ def corner_distances(directory, touch):
     return [float(numpy.linalg.norm(vertices - c, axis=1).min()) for c in corners]
 
 
+def series(directory, name="solution"):
+    """[(time, path), ...] of the frames of a run's NAME.pvd."""
+    collection = xml.etree.ElementTree.parse(os.path.join(directory, name + ".pvd")).getroot()
+    return [(float(d.get("timestep")), os.path.join(directory, d.get("file"))) for d in collection.iter("DataSet")]
+
+
+def over_frames(directory, measure):
+    """[[time, measure(frame)], ...] over the frames of solution.pvd."""
+    return [[time, measure(read_frame(path))] for time, path in series(directory)]
+
+
+def cells(grid):
+    """(cells, vertices per cell) array of a grid's connectivity (one cell type)."""
+    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
+    return connectivity.reshape(grid.GetNumberOfCells(), -1)
+
+
+def simplex_measures(xyz, simplices):
+    """Signed area (triangles) or volume (tetrahedra) of each simplex with vertices xyz[simplices]."""
+    corners = [xyz[i] for i in simplices.T]
+    edges = [c - corners[0] for c in corners[1:]]
+    if simplices.shape[1] == 3:
+        return 0.5 * (edges[0][:, 0] * edges[1][:, 1] - edges[0][:, 1] * edges[1][:, 0])
+    return numpy.einsum("ij,ij->i", edges[0], numpy.cross(edges[1], edges[2])) / 6
+
+
 def centroid_height(grid):
     """Height (y) of the centroid of a triangle (2D) or tetrahedron (3D) mesh, weighted by
     cell area or volume."""
-    xyz = vtk_to_numpy(grid.GetPoints().GetData())
-    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
-    vertices_per_cell = connectivity.size // grid.GetNumberOfCells()
-    corners = [xyz[i] for i in connectivity.reshape(-1, vertices_per_cell).T]
-    edges = [c - corners[0] for c in corners[1:]]
-    if vertices_per_cell == 3:
-        measure = 0.5 * (edges[0][:, 0] * edges[1][:, 1] - edges[0][:, 1] * edges[1][:, 0])
-    else:
-        measure = numpy.einsum("ij,ij->i", edges[0], numpy.cross(edges[1], edges[2])) / 6
-    cell_height = sum(c[:, 1] for c in corners) / vertices_per_cell
-    return float((cell_height * measure).sum() / measure.sum())
+    xyz, simplices = vtk_to_numpy(grid.GetPoints().GetData()), cells(grid)
+    measure = simplex_measures(xyz, simplices)
+    return float((xyz[simplices][:, :, 1].mean(axis=1) * measure).sum() / measure.sum())
 
 
 def centroid_heights(directory):
     """[[time, centroid height], ...] over the frames of solution.pvd."""
-    collection = xml.etree.ElementTree.parse(os.path.join(directory, "solution.pvd")).getroot()
-    return [[float(d.get("timestep")), centroid_height(read_frame(os.path.join(directory, d.get("file"))))]
-            for d in collection.iter("DataSet")]
+    return over_frames(directory, centroid_height)
 
 
 def kinetic_energy(grid, densities):
     """Kinetic energy 1/2 v^T M v of a frame with the consistent P1 mass matrix of its reference
     cells (M_ij = rho |cell| (1 + delta_ij) / ((d + 1)(d + 2)) on each simplex), which is exact for
     velocities linear in each cell. `densities`: {material id: density}."""
-    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
-    vertices_per_cell = connectivity.size // grid.GetNumberOfCells()
-    cells = connectivity.reshape(-1, vertices_per_cell)
+    simplices = cells(grid)
+    n = simplices.shape[1]
     reference = vtk_to_numpy(grid.GetPointData().GetArray("reference_position"))
-    velocity = vtk_to_numpy(grid.GetPointData().GetArray("velocity"))[cells]  # (cells, corners, 3)
-    corners = [reference[i] for i in cells.T]
-    edges = [c - corners[0] for c in corners[1:]]
-    if vertices_per_cell == 3:
-        measure = 0.5 * numpy.abs(edges[0][:, 0] * edges[1][:, 1] - edges[0][:, 1] * edges[1][:, 0])
-    else:
-        measure = numpy.abs(numpy.einsum("ij,ij->i", edges[0], numpy.cross(edges[1], edges[2]))) / 6
+    measure = numpy.abs(simplex_measures(reference, simplices))
+    velocity = vtk_to_numpy(grid.GetPointData().GetArray("velocity"))[simplices]  # (cells, corners, 3)
     material = vtk_to_numpy(grid.GetCellData().GetArray("material_id")).astype(int)
     rho = numpy.array([densities[m] for m in material])
     # v^T M v on a cell = rho |cell| / ((d+1)(d+2)) * (sum_i |v_i|^2 + |sum_i v_i|^2).
     quadratic = (velocity ** 2).sum(axis=(1, 2)) + (velocity.sum(axis=1) ** 2).sum(axis=1)
-    return float(0.5 * (rho * measure * quadratic).sum() / (vertices_per_cell * (vertices_per_cell + 1)))
+    return float(0.5 * (rho * measure * quadratic).sum() / (n * (n + 1)))
 
 
 def kinetic_energies(directory, densities):
     """[[time, kinetic energy], ...] over the frames of solution.pvd (see kinetic_energy)."""
-    collection = xml.etree.ElementTree.parse(os.path.join(directory, "solution.pvd")).getroot()
-    return [[float(d.get("timestep")), kinetic_energy(read_frame(os.path.join(directory, d.get("file"))), densities)]
-            for d in collection.iter("DataSet")]
+    return over_frames(directory, lambda grid: kinetic_energy(grid, densities))

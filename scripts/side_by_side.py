@@ -11,40 +11,29 @@ matplotlib on VTK's XML reader; scripts/render.py draws one run with ParaView in
 import argparse
 import os
 import sys
-import xml.etree.ElementTree
 
 import matplotlib
 import numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from frame_metrics import points, read_frame  # noqa: E402
+from frame_metrics import cells, points, read_frame, series  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def series(directory, name):
-    """[(time, path), ...] of a run's NAME.pvd."""
-    root = xml.etree.ElementTree.parse(os.path.join(directory, name + ".pvd")).getroot()
-    return [(float(d.get("timestep")), os.path.join(directory, d.get("file"))) for d in root.iter("DataSet")]
-
-
 def nearest(frames, time):
     return min(frames, key=lambda frame: abs(frame[0] - time))
 
 
-def cells(grid):
-    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
-    return connectivity.reshape(grid.GetNumberOfCells(), -1)
+def speeds(grid):
+    return numpy.linalg.norm(vtk_to_numpy(grid.GetPointData().GetArray("velocity")), axis=1)
 
 
-def draw(ax, directory, time, edges_below, speed_limit):
-    frame_time, path = nearest(series(directory, "solution"), time)
-    body = read_frame(path)
+def draw(ax, directory, frame_time, body, edges_below, speed_limit):
     xy, triangles = points(body), cells(body)
-    speed = numpy.linalg.norm(vtk_to_numpy(body.GetPointData().GetArray("velocity")), axis=1)
-    shading = ax.tripcolor(xy[:, 0], xy[:, 1], triangles, speed, shading="gouraud", vmin=0, vmax=speed_limit)
+    shading = ax.tripcolor(xy[:, 0], xy[:, 1], triangles, speeds(body), shading="gouraud", vmin=0, vmax=speed_limit)
     if len(xy) <= edges_below:
         ax.triplot(xy[:, 0], xy[:, 1], triangles, linewidth=0.2, color="white")
     if os.path.exists(os.path.join(directory, "obstacles.pvd")):
@@ -52,7 +41,7 @@ def draw(ax, directory, time, edges_below, speed_limit):
         corners = points(obstacles)
         for cell in cells(obstacles):
             ax.fill(corners[cell, 0], corners[cell, 1], color="0.65")
-    return frame_time, shading
+    return shading
 
 
 def main():
@@ -67,16 +56,19 @@ def main():
     runs = [r.split("=", 1) for r in args.runs]
     if any(len(r) != 2 for r in runs):
         p.error("each run is NAME=RUN_DIR")
+    # frames[i][j]: (time, grid) of run j's frame nearest to time i, each read once.
+    frames = []
+    for time in args.times:
+        nearest_frames = [nearest(series(directory), time) for _, directory in runs]
+        frames.append([(t, read_frame(path)) for t, path in nearest_frames])
     limit = args.speed_limit
     if limit is None:
-        limit = max(numpy.linalg.norm(vtk_to_numpy(read_frame(nearest(series(d, "solution"), t)[1])
-                                                   .GetPointData().GetArray("velocity")), axis=1).max()
-                    for _, d in runs for t in args.times)
+        limit = max(speeds(grid).max() for row in frames for _, grid in row)
     fig, axes = plt.subplots(len(args.times), len(runs), figsize=(4.2 * len(runs), 2.1 * len(args.times)),
                              squeeze=False, layout="constrained")
-    for row, time in zip(axes, args.times):
-        for ax, (name, directory) in zip(row, runs):
-            frame_time, shading = draw(ax, directory, time, args.edges_below, limit)
+    for row, row_frames in zip(axes, frames):
+        for ax, (name, directory), (frame_time, body) in zip(row, runs, row_frames):
+            shading = draw(ax, directory, frame_time, body, args.edges_below, limit)
             ax.set_title(f"{name}, t = {frame_time:.3g}", fontsize=8)
             ax.set_aspect("equal")
             if args.box:
