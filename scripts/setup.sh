@@ -13,7 +13,7 @@ fi
 build="${1:-$root/build}"
 
 packages=(build-essential cmake libdeal.ii-dev libeigen3-dev libsuitesparse-dev libtbb-dev
-          libopenblas0-pthread libgtest-dev ccache libvtk9-dev libcgal-dev
+          libopenblas0-pthread libblas-dev libgtest-dev ccache libvtk9-dev libcgal-dev
           python3-numpy python3-matplotlib)  # ladder.py (frame metrics), ladder_report.py (plots)
 $with_paraview && packages+=(paraview xvfb)
 missing=()

@@ -51,12 +51,6 @@ namespace ritr
   }
 
   template <int dim>
-  Eigen::VectorXd MeasureBarrierModel<dim>::apply_secants(const Eigen::VectorXd &p) const
-  {
-    return secant_rows_.transpose() * (secant_rows_ * p);
-  }
-
-  template <int dim>
   Eigen::SparseMatrix<double> MeasureBarrierModel<dim>::secants() const
   {
     return secant_rows_.transpose() * secant_rows_;

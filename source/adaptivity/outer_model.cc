@@ -15,11 +15,10 @@ namespace ritr
 
   template <int dim>
   OuterModel<dim>::OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g,
-                              const Eigen::SparseMatrix<double> &basis, SparseCholesky &preconditioner)
+                              const Eigen::SparseMatrix<double> &basis)
     : hessian_(hessian)
     , g_(g)
     , basis_(basis)
-    , preconditioner_(preconditioner)
   {
     sigma_ = std::max(std::abs(g.dot(hessian.apply(g))) / std::max(g.squaredNorm(), 1e-300), 1e-300);
   }
@@ -30,14 +29,6 @@ namespace ritr
     Eigen::SparseMatrix<double> identity(g_.size(), g_.size());
     identity.setIdentity();
     return barrier_hessian + sigma_ * identity;
-  }
-
-  template <int dim>
-  void OuterModel<dim>::factorize_preconditioner(const Eigen::SparseMatrix<double> &metric)
-  {
-    Eigen::SparseMatrix<double> lower = metric.template triangularView<Eigen::Lower>();
-    lower.makeCompressed();
-    preconditioner_.factorize(lower);
   }
 
   template <int dim>
@@ -64,12 +55,18 @@ namespace ritr
     };
     Eigen::VectorXd p = Eigen::VectorXd::Zero(g_.size()), rest_p = p;  // rest_p: the rest's Hessian times p
     auto            at_p = base;
-    // CG from p on the model's Hessian there, with the secants; the preconditioner is
-    // refactorised whenever either changes.
-    const auto refactorize = [&]() { factorize_preconditioner(metric(at_p.hessian + barrier.secants())); };
+    // CG from p on the model's Hessian there, S plus the barrier's change of Hessian from u to
+    // p and the secants (one sparse matrix, so that a CG product is S's and one sparse
+    // product); the preconditioner is refactorised whenever either changes.
+    Eigen::SparseMatrix<double> barrier_correction;
+    const auto                  refactorize = [&]() {
+      const Eigen::SparseMatrix<double> barrier_hessian = at_p.hessian + barrier.secants();
+      preconditioner_.factorize(sigma_, barrier_hessian);
+      barrier_correction = barrier_hessian - base.hessian;
+    };
     const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance) {
       const LinearMap apply = [&](const Eigen::VectorXd &v) {
-        return Eigen::VectorXd(apply_rest(v) + at_p.hessian * v + barrier.apply_secants(v));
+        return Eigen::VectorXd(hessian_.apply(v) + barrier_correction * v);
       };
       return steihaug_cg(apply, model_gradient, region, tolerance, max_cg, precondition);
     };

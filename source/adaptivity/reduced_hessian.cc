@@ -1,4 +1,5 @@
 #include <ritr/adaptivity/reduced_hessian.h>
+#include <ritr/common/symmetric_product.h>
 
 namespace ritr
 {
@@ -45,7 +46,7 @@ namespace ritr
   Eigen::VectorXd ReducedHessian::apply(const Eigen::VectorXd &p) const
   {
     if (dense())
-      return dense_ * p;
+      return symmetric_product(dense_, p);
     const Eigen::VectorXd response = cholesky_.solve(coupling_ * p);  // -dx on the free state
     return huu_ * p - coupling_.transpose() * response;
   }

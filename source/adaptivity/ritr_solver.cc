@@ -316,7 +316,7 @@ namespace ritr
           ScopedTimer timer(r.outer_solve_seconds);
           hessian.emplace(d.huu, d.hxx, d.hxu, r.z.size(), free_state_, basis_, state_cholesky_);
           barrier.set_point(r.u);
-          model.emplace(*hessian, g, basis_, preconditioner_);
+          model.emplace(*hessian, g, basis_);
         }
         // The forcing term's cap is tight because |g| often stays near its first value while
         // the mesh creeps along a flat valley: with a cap of 0.1 the steps then left a tenth

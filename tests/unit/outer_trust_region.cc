@@ -3,9 +3,11 @@
 // reduced Hessian against the dense Schur complement it stands for, and the folding of
 // prescribed entries that follow u (sliding Dirichlet nodes) against finite differences of
 // the composition; and the outer model's step against the measure barrier it keeps exact;
-// and the sparse Cholesky factorizations (supernodal and simplicial) these rest on.
+// and the sparse Cholesky factorizations (supernodal and simplicial) and the shifted sparse
+// inverse that preconditions CG, which these rest on.
 #include <ritr/adaptivity/outer_model.h>
 #include <ritr/adaptivity/reduced_hessian.h>
+#include <ritr/solver/shifted_sparse_inverse.h>
 #include <ritr/solver/steihaug_cg.h>
 
 #include <Eigen/Dense>
@@ -161,6 +163,30 @@ TEST(SparseCholesky, BothKindsSolveAndRegulariseAlike)
     }
 }
 
+// CG's preconditioner: sigma I plus a sparse B on a few unknowns, against the dense inverse.
+TEST(ShiftedSparseInverse, InvertsTheShiftedMatrix)
+{
+  const int                   n = 9;
+  Eigen::MatrixXd             dense_B = Eigen::MatrixXd::Zero(n, n);
+  const std::vector<int>      cell{2, 5, 7};
+  for (const int a : cell)
+    for (const int b : cell)
+      dense_B(a, b) = (a == b ? 3.0 : 0.0) + 0.5;  // positive definite on the cell
+  Eigen::SparseMatrix<double> B = dense_B.sparseView();
+  ShiftedSparseInverse        inverse;
+  for (const double sigma : {1e-3, 2.0})
+    {
+      inverse.factorize(sigma, B);
+      EXPECT_EQ(inverse.touched(), cell);
+      const Eigen::MatrixXd M = sigma * Eigen::MatrixXd::Identity(n, n) + dense_B;
+      const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+      EXPECT_LT((inverse.solve(v) - M.ldlt().solve(v)).norm(), 1e-12 * M.ldlt().solve(v).norm());
+    }
+  inverse.factorize(0.5, Eigen::SparseMatrix<double>(n, n));  // nothing touched: v / sigma
+  EXPECT_TRUE(inverse.touched().empty());
+  EXPECT_LT((inverse.solve(Eigen::VectorXd::Ones(n)) - 2.0 * Eigen::VectorXd::Ones(n)).norm(), 1e-15);
+}
+
 TEST(ReducedHessian, MatchesTheDenseSchurComplement)
 {
   // State of 10 entries, 2 of them prescribed; reference of 8 entries moving in a basis of 5.
@@ -287,7 +313,7 @@ namespace
     Eigen::SparseMatrix<double>  basis;
     Eigen::VectorXd              u = mesh.reference, target = u, g;
     const std::vector<int>       free_state{0};
-    SparseCholesky               state_cholesky, preconditioner;
+    SparseCholesky               state_cholesky;
     MeasureBarrierModel<2>       barrier{mesh, basis, w_hat, kappa};
     std::optional<ReducedHessian> S;
     std::optional<OuterModel<2>>  model;
@@ -303,7 +329,7 @@ namespace
       for (int i = 0; i < 6; ++i)
         huu.emplace_back(i, i, spring);
       S.emplace(huu, Triplets{{0, 0, 1.0}}, Triplets{}, 1, free_state, basis, state_cholesky);
-      model.emplace(*S, g, basis, preconditioner);
+      model.emplace(*S, g, basis);
     }
     // The spring and the barrier at v, computed directly.
     double objective(const Eigen::VectorXd &v) const

@@ -48,9 +48,8 @@ namespace ritr
     std::pair<double, double> best_fraction(const Eigen::VectorXd &p, const Eigen::VectorXd &d, double value_at_p,
                                             double alpha_max, double slope, double curvature) const;
 
-    // The extra secant curvature applied to p (0 until a step was cut by the barrier), and
-    // as a matrix in step coordinates (for the preconditioner).
-    Eigen::VectorXd             apply_secants(const Eigen::VectorXd &p) const;
+    // The extra secant curvature (0 until a step was cut by the barrier), as a matrix in step
+    // coordinates.
     Eigen::SparseMatrix<double> secants() const;
     // After the step from p to p + d, which the barrier cut short: every cell it drove deeper
     // into the barrier gets the secant curvature over it. Returns whether any did.

@@ -15,6 +15,7 @@
 // barrier, so that radii are lengths.
 #include <ritr/adaptivity/measure_barrier_model.h>
 #include <ritr/adaptivity/reduced_hessian.h>
+#include <ritr/solver/shifted_sparse_inverse.h>
 
 #include <functional>
 
@@ -24,9 +25,8 @@ namespace ritr
   class OuterModel
   {
   public:
-    // `g` in basis coordinates; `preconditioner` keeps its symbolic analysis across iterations.
-    OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis,
-               SparseCholesky &preconditioner);
+    // `g` in basis coordinates.
+    OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis);
 
     struct Step
     {
@@ -55,13 +55,11 @@ namespace ritr
   private:
     // sigma I + a barrier Hessian.
     Eigen::SparseMatrix<double> metric(const Eigen::SparseMatrix<double> &barrier_hessian) const;
-    // CG's preconditioner from a metric.
-    void factorize_preconditioner(const Eigen::SparseMatrix<double> &metric);
 
     const ReducedHessian              &hessian_;
     const Eigen::VectorXd             &g_;
     const Eigen::SparseMatrix<double> &basis_;
-    SparseCholesky                    &preconditioner_;
+    ShiftedSparseInverse               preconditioner_;  // CG's, the inverse of a metric
     double                             sigma_ = 0;
     Eigen::SparseMatrix<double>        metric_;  // the region's norm, at u, set by propose
   };

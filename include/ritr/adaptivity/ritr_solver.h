@@ -139,7 +139,5 @@ namespace ritr
     double                               youngs_modulus_ = 0;
     NewtonSolver                         outer_newton_;    // the line-search outer solves
     SparseCholesky                       state_cholesky_;  // H_xx of the reduced Hessian
-    // The trust-region CG's preconditioner, sigma I plus a few barrier cells: simplicial.
-    SparseCholesky                       preconditioner_{SparseCholesky::Kind::simplicial};
   };
 } // namespace ritr

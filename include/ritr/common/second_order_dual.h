@@ -9,6 +9,7 @@
 // operation is acceptable outside the innermost hot loops.
 #include <Eigen/Core>
 #include <cmath>
+#include <type_traits>
 
 namespace ritr
 {
@@ -202,6 +203,16 @@ namespace ritr
   }
 
   inline double square(const double a) { return a * a; }
+
+  // A scalar about to be assigned: 0 for a double, a dual number with its derivatives unset.
+  template <typename S>
+  S unset()
+  {
+    if constexpr (std::is_same_v<S, double>)
+      return 0.0;
+    else
+      return S(typename S::Unset{});
+  }
 
   // Value of a plain double or of a dual number, for code templated on the scalar type.
   inline double value_of(const double a) { return a; }

@@ -134,7 +134,9 @@ namespace ritr::transfer
   {
     struct Vertex
     {
-      Point2<S>      X;
+      // Unset: a clip fills only the vertices it makes, and zeroing 9 dual vertices cost
+      // more than the arithmetic of a small overlap.
+      Point2<S>      X{unset<S>(), unset<S>()};
       Point2<double> shift{0.0, 0.0};  // dX / d delta of the symbolic shift
     };
     static constexpr int          capacity = 9;
@@ -149,14 +151,18 @@ namespace ritr::transfer
     const double dx = symbolic_shift[0], dy = symbolic_shift[1];
     constexpr int capacity = OverlapPolygon<S>::capacity;
     using Vertex           = typename OverlapPolygon<S>::Vertex;
-    OverlapPolygon<S> result;
-    auto             &polygon = result.vertices;
-    std::array<Vertex, capacity> clipped;
+    // The passes alternate between the result's vertices and a scratch buffer (copying a dual
+    // vertex moves 86 numbers).
+    OverlapPolygon<S>            result;
+    std::array<Vertex, capacity> scratch;
     int                          n = 3;
     for (int i = 0; i < 3; ++i)
-      polygon[i].X = K[i];
-    for (int b = 0; b < 3 && n >= 3; ++b)
+      result.vertices[i].X = K[i];
+    int b = 0;
+    for (; b < 3 && n >= 3; ++b)
       {
+        auto &polygon = b % 2 == 0 ? result.vertices : scratch;
+        auto &clipped = b % 2 == 0 ? scratch : result.vertices;
         const double gx = Q.gradient(b, 0), gy = Q.gradient(b, 1), g0 = Q.offset[b];
         // mu_b at each vertex of the shifted configuration, v + delta e (v in plain arithmetic
         // for the decisions; as a dual number only where a crossing needs it).
@@ -209,9 +215,10 @@ namespace ritr::transfer
                                shift * (value_of(polygon[j].X[k]) - value_of(polygon[i].X[k]));
               }
           }
-        std::copy(clipped.begin(), clipped.begin() + m, polygon.begin());
         n = m;
       }
+    if (b % 2 == 1)  // the last pass wrote the scratch buffer
+      std::copy(scratch.begin(), scratch.begin() + n, result.vertices.begin());
     result.size = n;
     return result;
   }
