@@ -5,18 +5,6 @@
 
 namespace ritr
 {
-  template <typename F>
-  decltype(auto) SparseCholesky::with_llt(F &&f)
-  {
-    return kind_ == Kind::supernodal ? f(supernodal_) : f(simplicial_);
-  }
-
-  template <typename F>
-  decltype(auto) SparseCholesky::with_llt(F &&f) const
-  {
-    return kind_ == Kind::supernodal ? f(supernodal_) : f(simplicial_);
-  }
-
   bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double> &m) const
   {
     return analysed_ && static_cast<std::size_t>(m.outerSize() + 1) == outer_.size() &&
@@ -33,7 +21,7 @@ namespace ritr
       return 0.0;  // every entry prescribed: nothing to factorize (CHOLMOD fails on it)
     if (!same_pattern(matrix))
       {
-        with_llt([&](auto &llt) { llt.analyzePattern(matrix); });
+        llt_.analyzePattern(matrix);
         outer_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
         inner_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
         analysed_ = true;
@@ -41,13 +29,11 @@ namespace ritr
       }
     // A failed attempt is expected here (print 0: no warning on stderr).
     const auto factorize_shifted = [&](const double shift) {
-      return with_llt([&](auto &llt) {
-        llt.cholmod().print = 0;
-        llt.setShift(shift);
-        llt.factorize(matrix);
-        ++n_factorizations_;
-        return llt.info() == Eigen::Success;
-      });
+      llt_.cholmod().print = 0;
+      llt_.setShift(shift);
+      llt_.factorize(matrix);
+      ++n_factorizations_;
+      return llt_.info() == Eigen::Success;
     };
     if (factorize_shifted(0.0))
       return 0.0;
@@ -62,11 +48,11 @@ namespace ritr
 
   Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd &rhs) const
   {
-    return rhs.size() == 0 ? rhs : with_llt([&](const auto &llt) { return Eigen::VectorXd(llt.solve(rhs)); });
+    return rhs.size() == 0 ? rhs : Eigen::VectorXd(llt_.solve(rhs));
   }
 
   Eigen::MatrixXd SparseCholesky::solve_columns(const Eigen::MatrixXd &rhs) const
   {
-    return rhs.size() == 0 ? rhs : with_llt([&](const auto &llt) { return Eigen::MatrixXd(llt.solve(rhs)); });
+    return rhs.size() == 0 ? rhs : Eigen::MatrixXd(llt_.solve(rhs));
   }
 } // namespace ritr

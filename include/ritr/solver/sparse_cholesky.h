@@ -1,8 +1,8 @@
 #pragma once
 // Sparse Cholesky factorization with CHOLMOD, reusing the symbolic analysis for as long as the
-// matrix keeps the same sparsity pattern (contact pairs change it). Supernodal by default;
-// simplicial for matrices that are nearly diagonal and solved many times, where the
-// supernodal solve's BLAS calls cost more than its arithmetic.
+// matrix keeps the same sparsity pattern (contact pairs change it). Supernodal. (Nearly
+// diagonal matrices solved many times, where a solve's call overhead costs more than its
+// arithmetic, have their own inverse: shifted_sparse_inverse.h.)
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 
@@ -13,15 +13,6 @@ namespace ritr
   class SparseCholesky
   {
   public:
-    enum class Kind
-    {
-      supernodal,
-      simplicial
-    };
-    explicit SparseCholesky(Kind kind = Kind::supernodal)
-      : kind_(kind)
-    {}
-
     // Factorizes `matrix` (symmetric, lower triangle used). A matrix that is not positive
     // definite is regularised by adding a growing multiple of the identity; returns the
     // shift that was needed (0 for a positive definite matrix).
@@ -36,15 +27,7 @@ namespace ritr
   private:
     bool same_pattern(const Eigen::SparseMatrix<double> &matrix) const;
 
-    // Runs `f` on the factorization of this kind.
-    template <typename F>
-    decltype(auto) with_llt(F &&f);
-    template <typename F>
-    decltype(auto) with_llt(F &&f) const;
-
-    Kind                                                                    kind_;
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> supernodal_;
-    Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> simplicial_;
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
     std::vector<int> outer_, inner_;
     bool             analysed_         = false;
     unsigned int     n_analyses_       = 0;
