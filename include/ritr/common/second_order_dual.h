@@ -6,7 +6,9 @@
 // density) are written once as templates on the scalar type; instantiating them with
 // SecondOrderDual gives exact first and second derivatives, which the tests then check
 // against finite differences. Stencils are small (N <= 24), so the O(N^2) cost per
-// operation is acceptable outside the innermost hot loops.
+// operation is acceptable outside the innermost hot loops. The Hessians' outer products are
+// lazy products, so that each result is one pass over its N^2 entries (a plain product in a
+// sum is evaluated into a temporary first).
 #include <Eigen/Core>
 #include <cmath>
 #include <type_traits>
@@ -58,6 +60,17 @@ namespace ritr
       hess -= b.hess;
       return *this;
     }
+    // With a constant only the value changes.
+    SecondOrderDual &operator+=(const double b)
+    {
+      value += b;
+      return *this;
+    }
+    SecondOrderDual &operator-=(const double b)
+    {
+      value -= b;
+      return *this;
+    }
     SecondOrderDual &operator*=(const SecondOrderDual &b) { return *this = *this * b; }
     SecondOrderDual &operator/=(const SecondOrderDual &b) { return *this = *this / b; }
   };
@@ -70,7 +83,7 @@ namespace ritr
     SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = f;
     r.grad  = df * a.grad;
-    r.hess  = df * a.hess + d2f * a.grad * a.grad.transpose();
+    r.hess  = df * a.hess + (d2f * a.grad).lazyProduct(a.grad.transpose());
     return r;
   }
 
@@ -110,8 +123,8 @@ namespace ritr
     SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = a.value * b.value;
     r.grad  = a.value * b.grad + b.value * a.grad;
-    r.hess  = a.value * b.hess + b.value * a.hess + a.grad * b.grad.transpose() +
-             b.grad * a.grad.transpose();
+    r.hess  = a.value * b.hess + b.value * a.hess + a.grad.lazyProduct(b.grad.transpose()) +
+             b.grad.lazyProduct(a.grad.transpose());
     return r;
   }
 
@@ -123,7 +136,9 @@ namespace ritr
     SecondOrderDual<N> r{typename SecondOrderDual<N>::Unset{}};
     r.value = a.value * inv;
     r.grad  = (a.grad - r.value * b.grad) * inv;
-    r.hess  = (a.hess - r.value * b.hess - r.grad * b.grad.transpose() - b.grad * r.grad.transpose()) * inv;
+    r.hess  = (a.hess - r.value * b.hess - r.grad.lazyProduct(b.grad.transpose()) -
+              b.grad.lazyProduct(r.grad.transpose())) *
+             inv;
     return r;
   }
 

@@ -230,17 +230,16 @@ namespace ritr::transfer
                         const AffineBarycentric<2> &Q, const std::array<std::array<double, 3>, M> &F,
                         std::array<std::array<S, M>, 3> &moments)
   {
-    const OverlapPolygon<S> polygon = clip(K, Q);
+    OverlapPolygon<S> polygon = clip(K, Q);
     if (polygon.size < 3)
       return;
     const Point2<double> origin{value_of(K[0][0]), value_of(K[0][1])};
-    const auto           local = [&](const int i) {
-      return Point2<S>{polygon.vertices[i].X[0] - origin[0], polygon.vertices[i].X[1] - origin[1]};
-    };
+    for (int i = 0; i < polygon.size; ++i)  // about the origin, in place (a constant moves values only)
+      for (int k = 0; k < 2; ++k)
+        polygon.vertices[i].X[k] -= origin[k];
     RegionMoments<S> g;
-    const Point2<S>  p0 = local(0);
     for (int i = 1; i + 1 < polygon.size; ++i)
-      add_triangle_geometry(p0, local(i), local(i + 1), g);
+      add_triangle_geometry(polygon.vertices[0].X, polygon.vertices[i].X, polygon.vertices[i + 1].X, g);
     add_moments<S, M>(g, origin, lambda, F, moments);
   }
 } // namespace ritr::transfer
