@@ -64,20 +64,34 @@ namespace ritr
       preconditioner_.factorize(sigma_, barrier_hessian);
       barrier_correction = barrier_hessian - base.hessian;
     };
-    const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance) {
+    // CG from a guess solves for the correction to it, when the guess's residual is below the
+    // gradient's: after a step cut to a fraction, the rest of the direction is most of the next one.
+    const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance,
+                                      const Eigen::VectorXd &guess) {
       const LinearMap apply = [&](const Eigen::VectorXd &v) {
         return Eigen::VectorXd(hessian_.apply(v) + barrier_correction * v);
       };
+      if (guess.size() > 0)
+        {
+          const Eigen::VectorXd residual = model_gradient + apply(guess);
+          if (residual.norm() < model_gradient.norm())
+            {
+              SteihaugResult correction = steihaug_cg(apply, residual, region, tolerance, max_cg, precondition);
+              correction.step += guess;
+              return correction;
+            }
+        }
       return steihaug_cg(apply, model_gradient, region, tolerance, max_cg, precondition);
     };
+    const Eigen::VectorXd from_zero;
 
     Step           step;
     Eigen::VectorXd model_gradient = g_;
     refactorize();
-    SteihaugResult cg = newton_direction(model_gradient, forcing * g_.norm());
+    SteihaugResult cg = newton_direction(model_gradient, forcing * g_.norm(), from_zero);
     if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
       {
-        cg      = newton_direction(model_gradient, 1e-8 * g_.norm());
+        cg      = newton_direction(model_gradient, 1e-8 * g_.norm(), from_zero);
         step.du = basis_ * cg.step;
         if (cg.interior && step.du.template lpNorm<Eigen::Infinity>() <= epsilon_r)
           {
@@ -103,7 +117,7 @@ namespace ritr
           {
             ++refinements;
             refactorize();
-            cg = newton_direction(model_gradient, forcing * g_.norm());
+            cg = newton_direction(model_gradient, forcing * g_.norm(), Eigen::VectorXd(alpha * d));
             continue;
           }
         ++k;
@@ -122,7 +136,7 @@ namespace ritr
         // The next Newton step of the model, from p; the region's norm stays that of u, so
         // CG's own region is a bound, cut to it above.
         refactorize();
-        cg = newton_direction(model_gradient, forcing * g_.norm());
+        cg = newton_direction(model_gradient, forcing * g_.norm(), Eigen::VectorXd((1 - alpha) * d));
       }
     step.p  = p;
     step.du = basis_ * p;
