@@ -11,7 +11,8 @@ epsilon r below 1e-5 the outer iteration limit is raised to 200. From each log.c
 step's outer iteration ended (the outer_stop column), the mean outer iterations, the inner
 Newton iterations and trials, the total decrease of R over the steps (sum of
 initial_objective - energy), the wall time of the steps and the time of an r-ITR step over a
-step of the same scene on its fixed mesh (run first). Later steps of different runs start
+step of the same scene on its fixed mesh (run first); "idle/fixed" is the same ratio for the steps
+whose outer solve stopped at its first check (no mesh moved), the floor of an r-ITR step. Later steps of different runs start
 from different states, so the decrease of R is a sum of per-step gains, comparable between the
 runs of one table. Ratios are taken within one epsilon r against the first variant named. The
 exit code is 1 if a run failed, or with --require-converging VARIANT if a run of VARIANT at
@@ -43,6 +44,9 @@ def summarize(log_csv):
         "trials": sum(int(r["line_search_trials"]) for r in rows),
         "decrease": sum(float(r["initial_objective"]) - float(r["energy"]) for r in rows),
         "wall": sum(float(r["wall_seconds"]) for r in rows),
+        # Steps whose outer solve stopped at its first check: what deciding costs when no
+        # mesh moves (the start-of-step solve, one evaluation of R's derivatives, S).
+        "idle_walls": [float(r["wall_seconds"]) for r, n in zip(rows, outer) if n == 0],
     }
 
 
@@ -76,7 +80,8 @@ def main():
     print(f"fixed mesh: {len(fixed_rows)} steps, {fixed_step:.4f} s per step")
     print(f"{'epsilon r':>9} {'variant':>18} {'steps':>5} {'converged':>9} {'small dec.':>10} {'no decr.':>8} {'at limit':>8} "
           f"{'outer/step':>10} {'inner':>7} "
-          f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'step/fixed':>10} {'wall ratio':>10} {'decrease ratio':>14}")
+          f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'step/fixed':>10} {'idle/fixed':>10} {'wall ratio':>10} "
+          f"{'decrease ratio':>14}")
     for epsilon in args.epsilon:
         base = None
         for variant in args.hessian:
@@ -104,10 +109,12 @@ def main():
             if variant == args.require_converging and limit and s["at_limit"] > 0:
                 failed = True
             base = base or s
+            idle = (f"{sum(s['idle_walls']) / len(s['idle_walls']) / fixed_step:>10.1f}" if s["idle_walls"]
+                    else f"{'-':>10}")
             print(f"{epsilon:>9} {variant:>18} {s['steps']:>5} {s['converged']:>9} {s['small_decrease']:>10} {s['no_decrease']:>8} "
                   f"{s['at_limit']:>8} {s['mean_outer']:>10.1f} "
                   f"{s['inner']:>7} {s['trials']:>6} {s['decrease']:>11.3e} {s['wall']:>8.1f} "
-                  f"{s['wall'] / s['steps'] / fixed_step:>10.1f} "
+                  f"{s['wall'] / s['steps'] / fixed_step:>10.1f} {idle} "
                   f"{s['wall'] / base['wall']:>10.2f} {s['decrease'] / base['decrease']:>14.2f}", flush=True)
     return 1 if failed else 0
 
