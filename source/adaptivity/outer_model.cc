@@ -65,7 +65,9 @@ namespace ritr
       barrier_correction = barrier_hessian - base.hessian;
     };
     // CG from a guess solves for the correction to it, when the guess's residual is below the
-    // gradient's: after a step cut to a fraction, the rest of the direction is most of the next one.
+    // gradient's: after a step cut to a fraction, the rest of the direction is most of the next
+    // one. The result's step is the guess plus the correction; `interior` is the correction's
+    // (the only other field read here).
     const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance,
                                       const Eigen::VectorXd &guess) {
       const LinearMap apply = [&](const Eigen::VectorXd &v) {
