@@ -64,12 +64,12 @@ namespace ritr
       preconditioner_.factorize(sigma_, barrier_hessian);
       barrier_correction = barrier_hessian - base.hessian;
     };
-    // CG from a guess solves for the correction to it, when the guess's residual is below the
-    // gradient's: after a step cut to a fraction, the rest of the direction is most of the next
-    // one. The result's step is the guess plus the correction; `interior` is the correction's
-    // (the only other field read here).
+    // CG from zero, or from a guess: then it solves for the correction to the guess, when the
+    // guess's residual is below the gradient's (after a step cut to a fraction, the rest of the
+    // direction is most of the next one). The result's step is the guess plus the correction;
+    // `interior` is the correction's (the only other field read here).
     const auto newton_direction = [&](const Eigen::VectorXd &model_gradient, const double tolerance,
-                                      const Eigen::VectorXd &guess) {
+                                      const Eigen::VectorXd &guess = Eigen::VectorXd()) {
       const LinearMap apply = [&](const Eigen::VectorXd &v) {
         return Eigen::VectorXd(hessian_.apply(v) + barrier_correction * v);
       };
@@ -85,15 +85,14 @@ namespace ritr
         }
       return steihaug_cg(apply, model_gradient, region, tolerance, max_cg, precondition);
     };
-    const Eigen::VectorXd from_zero;
 
     Step           step;
     Eigen::VectorXd model_gradient = g_;
     refactorize();
-    SteihaugResult cg = newton_direction(model_gradient, forcing * g_.norm(), from_zero);
+    SteihaugResult cg = newton_direction(model_gradient, forcing * g_.norm());
     if (cg.interior && (basis_ * cg.step).template lpNorm<Eigen::Infinity>() <= epsilon_r)
       {
-        cg      = newton_direction(model_gradient, 1e-8 * g_.norm(), from_zero);
+        cg      = newton_direction(model_gradient, 1e-8 * g_.norm());
         step.du = basis_ * cg.step;
         if (cg.interior && step.du.template lpNorm<Eigen::Infinity>() <= epsilon_r)
           {

@@ -10,30 +10,31 @@ namespace ritr
     if (!(sigma > 0))
       throw std::logic_error("ShiftedSparseInverse needs a positive shift");
     sigma_ = sigma;
-    const Eigen::Index n = B.rows();
-    std::vector<int>   local(n, -1);
+    // One pass over B's lower triangle collects its entries and the unknowns they touch.
+    std::vector<Eigen::Triplet<double>> entries;
+    std::vector<int>                    local(B.rows(), -1);
     touched_.clear();
     for (Eigen::Index c = 0; c < B.outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator it(B, c); it; ++it)
         if (it.row() >= it.col() && it.value() != 0)
-          for (const Eigen::Index i : {it.row(), it.col()})
-            if (local[i] < 0)
-              {
-                local[i] = 0;
-                touched_.push_back(int(i));
-              }
+          {
+            entries.emplace_back(it.row(), it.col(), it.value());
+            for (const Eigen::Index i : {it.row(), it.col()})
+              if (local[i] < 0)
+                {
+                  local[i] = 0;
+                  touched_.push_back(int(i));
+                }
+          }
+    if (touched_.empty())
+      return;
     std::sort(touched_.begin(), touched_.end());
     for (std::size_t a = 0; a < touched_.size(); ++a)
       local[touched_[a]] = int(a);
-    if (touched_.empty())
-      return;
-    std::vector<Eigen::Triplet<double>> entries;
+    for (auto &e : entries)  // to the block's numbering
+      e = Eigen::Triplet<double>(local[e.row()], local[e.col()], e.value());
     for (std::size_t a = 0; a < touched_.size(); ++a)
       entries.emplace_back(a, a, sigma);
-    for (Eigen::Index c = 0; c < B.outerSize(); ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(B, c); it; ++it)
-        if (it.row() >= it.col() && it.value() != 0)
-          entries.emplace_back(local[it.row()], local[it.col()], it.value());
     const Eigen::Index          m = Eigen::Index(touched_.size());
     Eigen::SparseMatrix<double> block(m, m);
     block.setFromTriplets(entries.begin(), entries.end());
