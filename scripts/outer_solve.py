@@ -14,8 +14,8 @@ initial_objective - energy), the wall time of the steps and the time of an r-ITR
 step of the same scene on its fixed mesh (run first); "idle/fixed" is the same ratio for the
 steps whose outer solve stopped at its first check (no mesh moved), the floor of an r-ITR
 step. Later steps of different runs start from different states, so the decrease of R is a
-sum of per-step gains, comparable between the runs of one table. Ratios are taken within one epsilon r against the first variant named. The
-exit code is 1 if a run failed, or with --require-converging VARIANT if a run of VARIANT at
+sum of per-step gains, comparable between the runs of one table. Ratios are taken within one
+epsilon r against the first variant named. The exit code is 1 if a run failed, or with --require-converging VARIANT if a run of VARIANT at
 epsilon r below 1e-5 left a step on the iteration limit.
 """
 import argparse

@@ -43,9 +43,10 @@ namespace ritr
     // a CG to the residual `forcing` |g| and a step cut to its best fraction under
     // `step_filter` and the exact barrier, until the model's gradient falls below `forcing`
     // |g|; a direction the barrier cuts to less than half gets secants and CG again (at most
-    // three times per proposal). Every CG after the first starts from what is left of the
-    // last direction. A first Newton step below `epsilon_r` is returned uncut, after a tight
-    // CG from zero confirmed it (a loose residual may hide soft directions behind a stiff one).
+    // three times per proposal). A later CG starts from the rest of the cut direction (after a
+    // cut) or from its cut part (after secants) when that guess leaves a smaller residual than
+    // the gradient. A first Newton step below `epsilon_r` is returned uncut, after a tight CG
+    // from zero confirmed it (a loose residual may hide soft directions behind a stiff one).
     Step propose(double radius, double forcing, double epsilon_r, const StepFilter &step_filter,
                  MeasureBarrierModel<dim> &barrier);
 
