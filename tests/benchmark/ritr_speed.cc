@@ -46,7 +46,7 @@ namespace
 
 TEST(RitrSpeed, BallOnSpikesAgainstFixedMeshes)
 {
-  Scene scene    = read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/verification/ball_on_spikes_2d.prm");
+  Scene scene    = read_scene(test_support::source_dir() + "/prm/verification/ball_on_spikes_2d.prm");
   scene.end_time = 0.3;
   const Timing ritr   = run(scene, 1, true);
   const Timing same   = run(scene, 1, false);

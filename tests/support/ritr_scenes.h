@@ -6,7 +6,8 @@
 #include <ritr/terms/elasticity_term.h>
 #include <ritr/time/simulation.h>
 
-#include <cstdlib>
+#include "test_paths.h"
+
 #include <memory>
 #include <string>
 
@@ -14,7 +15,7 @@ namespace ritr::test_support
 {
   inline Scene ritr_scene(const std::string &name)
   {
-    return read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/verification/ritr/" + name);
+    return read_scene(test_support::source_dir() + "/prm/verification/ritr/" + name);
   }
 
   // Builds the simulation and advances it through every step of the scene.

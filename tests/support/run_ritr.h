@@ -1,6 +1,8 @@
 #pragma once
-// Runs the ritr executable (path from the RITR_BINARY environment variable that ctest sets)
+// Runs the ritr executable (test_paths.h)
 // and captures its exit code and standard error; reads and writes whole files and folders.
+#include "test_paths.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -49,8 +51,6 @@ end
     return text.replace(text.find(from), from.size(), to);
   }
 
-  inline std::string source_dir() { return std::getenv("RITR_SOURCE_DIR"); }
-
   // Runs a shell command line; `redirections` says where the streams go ("2>&1": both are
   // captured).
   inline RunResult run_command(const std::string &command_line, const std::string &redirections = "2>&1")
@@ -68,7 +68,7 @@ end
 
   inline RunResult run_ritr(const std::string &arguments, const std::string &redirections = "2>&1")
   {
-    return run_command(std::string(std::getenv("RITR_BINARY")) + " " + arguments, redirections);
+    return run_command(ritr_binary() + " " + arguments, redirections);
   }
 
   inline std::string read_file(const std::string &path)

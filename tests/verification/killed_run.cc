@@ -36,13 +36,14 @@ namespace
   // Starts ritr on the scene with its output discarded; returns its process id.
   pid_t start_ritr()
   {
-    const pid_t pid = fork();
+    const std::string binary = ritr_binary();  // before fork: the child only calls exec
+    const pid_t       pid    = fork();
     if (pid == 0)
       {
         const int null = open("/dev/null", O_WRONLY);
         dup2(null, 1);
         dup2(null, 2);
-        execl(std::getenv("RITR_BINARY"), "ritr", scene.c_str(), static_cast<char *>(nullptr));
+        execl(binary.c_str(), "ritr", scene.c_str(), static_cast<char *>(nullptr));
         _exit(127);
       }
     return pid;

@@ -65,17 +65,17 @@ namespace
   bool run_and_kill(const std::string &scene, const std::string &output, const unsigned int rows,
                     const bool resume)
   {
-    const pid_t pid = fork();
+    const std::string binary = ritr_binary();  // before fork: the child only calls exec
+    const pid_t       pid    = fork();
     if (pid == 0)
       {
         const int null = open("/dev/null", O_WRONLY);
         dup2(null, 1);
         dup2(null, 2);
-        const char *binary = std::getenv("RITR_BINARY");
         if (resume)
-          execl(binary, "ritr", scene.c_str(), "--resume", static_cast<char *>(nullptr));
+          execl(binary.c_str(), "ritr", scene.c_str(), "--resume", static_cast<char *>(nullptr));
         else
-          execl(binary, "ritr", scene.c_str(), static_cast<char *>(nullptr));
+          execl(binary.c_str(), "ritr", scene.c_str(), static_cast<char *>(nullptr));
         _exit(127);
       }
     int  status = 0;

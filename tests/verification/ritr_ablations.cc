@@ -74,7 +74,7 @@ TEST(RitrAblations, BeatsTheFixedMeshAtEveryRefinement)
 
 TEST(RitrAblations, EveryStepKeepsTheInvariants)
 {
-  Scene scene = read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/verification/ball_on_spikes_2d.prm");
+  Scene scene = read_scene(test_support::source_dir() + "/prm/verification/ball_on_spikes_2d.prm");
   scene.bodies[0].geometry.shape_refinements = 1;
   scene.end_time                             = 0.25;
   scene.adaptivity.enabled                   = true;
@@ -189,7 +189,7 @@ namespace
 // the momentum balance to solver tolerance and gains no energy; the ablation breaks both.
 TEST(RitrAblations, InOptimizationProjectionKeepsMomentumAndEnergy)
 {
-  Scene scene = read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/verification/ball_on_spikes_2d.prm");
+  Scene scene = read_scene(test_support::source_dir() + "/prm/verification/ball_on_spikes_2d.prm");
   scene.bodies[0].geometry.shape_refinements = 1;
   scene.end_time                             = 0.12;  // the first contact
   scene.adaptivity.epsilon_r                 = 1e-4;
@@ -238,7 +238,7 @@ TEST(RitrAblations, BeatsTheFixedMeshIn3D)
 // was written), and says why it stopped.
 TEST(RitrAblations, TrustRegionEndsBelowTheTightTruncatedSolve)
 {
-  Scene scene = read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/paper/bar_impact.prm");
+  Scene scene = read_scene(test_support::source_dir() + "/prm/paper/bar_impact.prm");
   scene.end_time                  = scene.time_step;
   scene.output_directory          = "output/ritr_ablations/outer_solve";
   scene.adaptivity.epsilon_r      = 1e-6;

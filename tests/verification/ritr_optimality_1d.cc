@@ -100,7 +100,7 @@ namespace
   std::pair<unsigned int, double> check_optimality(const RitrHessian hessian, const double tolerance = 1e-5,
                                                    const double inner_tolerance_factor = 1)
   {
-  Scene scene = read_scene(std::string(std::getenv("RITR_SOURCE_DIR")) + "/prm/ritr_rod_1d.prm");
+  Scene scene = read_scene(test_support::source_dir() + "/prm/ritr_rod_1d.prm");
   scene.end_time                  = h;
   scene.solver.newton_tolerance   = 1e-8;  // |dx|_inf <= 1e-10
   scene.adaptivity.hessian        = hessian;
