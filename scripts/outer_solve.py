@@ -6,17 +6,21 @@
 
 A variant is an outer Hessian, optionally with the transfer's integration after a slash
 (reduced/quadrature, reduced/exact; without one, the scene's). For every (epsilon r, variant)
-pair the scene runs once, in turn, in its own process; at
-epsilon r below 1e-5 the outer iteration limit is raised to 200. From each log.csv: why each
+pair the scene runs once, in turn, in its own process; at epsilon r below 1e-5 the outer
+iteration limit is raised to 200. From each log.csv: why each
 step's outer iteration ended (the outer_stop column), the mean outer iterations, the inner
 Newton iterations and trials, the total decrease of R over the steps (sum of
 initial_objective - energy), the wall time of the steps and the time of an r-ITR step over a
 step of the same scene on its fixed mesh (run first); "idle/fixed" is the same ratio for the
 steps whose outer solve stopped at its first check (no mesh moved), the floor of an r-ITR
-step. Later steps of different runs start from different states, so the decrease of R is a
+step; "inner/fixed" is the time of an r-ITR step's inner solves alone (the start-of-step solve
+and every trial's) over a fixed step, a floor that no cheaper outer model can lower, and
+"newton/fixed" the same for inner Newton iterations (which do not depend on the machine's
+speed). Later steps of different runs start from different states, so the decrease of R is a
 sum of per-step gains, comparable between the runs of one table. Ratios are taken within one
-epsilon r against the first variant named. The exit code is 1 if a run failed, or with --require-converging VARIANT if a run of VARIANT at
-epsilon r below 1e-5 left a step on the iteration limit.
+epsilon r against the first variant named. The exit code is 1 if a run failed, or with
+--require-converging VARIANT if a run of VARIANT at epsilon r below 1e-5 left a step on the
+iteration limit or took more than 15 outer iterations per step on average.
 """
 import argparse
 import csv
@@ -27,6 +31,10 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from prm_variant import write_variant  # noqa: E402
+
+
+# The issue's bar for a converging outer solve at a tight epsilon r.
+MAX_MEAN_OUTER = 15
 
 
 def summarize(log_csv):
@@ -44,6 +52,7 @@ def summarize(log_csv):
         "trials": sum(int(r["line_search_trials"]) for r in rows),
         "decrease": sum(float(r["initial_objective"]) - float(r["energy"]) for r in rows),
         "wall": sum(float(r["wall_seconds"]) for r in rows),
+        "inner_seconds": sum(float(r["inner_solve_seconds"]) for r in rows),
         # Steps whose outer solve stopped at its first check: what deciding costs when no
         # mesh moves (the start-of-step solve, one evaluation of R's derivatives, S).
         "idle_walls": [float(r["wall_seconds"]) for r, n in zip(rows, outer) if n == 0],
@@ -59,7 +68,8 @@ def main():
     parser.add_argument("--end-time")
     parser.add_argument("--work", default=None)
     parser.add_argument("--require-converging", metavar="VARIANT",
-                        help="exit 1 if a run of VARIANT at epsilon r below 1e-5 leaves a step on the iteration limit")
+                        help="exit 1 if a run of VARIANT at epsilon r below 1e-5 leaves a step on the iteration "
+                             f"limit or takes more than {MAX_MEAN_OUTER} outer iterations per step")
     args = parser.parse_args()
     work = args.work or tempfile.mkdtemp(prefix="outer_solve_")
     os.makedirs(work, exist_ok=True)
@@ -77,10 +87,13 @@ def main():
             return 1
     fixed_rows = list(csv.DictReader(open(os.path.join(work, "fixed", "log.csv"))))
     fixed_step = sum(float(r["wall_seconds"]) for r in fixed_rows) / max(len(fixed_rows), 1)
-    print(f"fixed mesh: {len(fixed_rows)} steps, {fixed_step:.4f} s per step")
+    fixed_newton = sum(int(r["inner_newton_iterations"]) for r in fixed_rows) / max(len(fixed_rows), 1)
+    print(f"fixed mesh: {len(fixed_rows)} steps, {fixed_step:.4f} s and {fixed_newton:.1f} Newton iterations per step")
     print(f"{'epsilon r':>9} {'variant':>18} {'steps':>5} {'converged':>9} {'small dec.':>10} {'no decr.':>8} {'at limit':>8} "
           f"{'outer/step':>10} {'inner':>7} "
-          f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'step/fixed':>10} {'idle/fixed':>10} {'wall ratio':>10} "
+          f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'step/fixed':>10} {'idle/fixed':>10} {'inner/fixed':>11} "
+          f"{'newton/fixed':>12} "
+          f"{'wall ratio':>10} "
           f"{'decrease ratio':>14}")
     for epsilon in args.epsilon:
         base = None
@@ -106,7 +119,8 @@ def main():
                 print(f"{epsilon:>9} {variant:>18} failed with exit code {code}")
                 continue
             s = summarize(os.path.join(work, name, "log.csv"))
-            if variant == args.require_converging and limit and s["at_limit"] > 0:
+            if variant == args.require_converging and limit and (s["at_limit"] > 0 or
+                                                                   s["mean_outer"] > MAX_MEAN_OUTER):
                 failed = True
             base = base or s
             idle = (f"{sum(s['idle_walls']) / len(s['idle_walls']) / fixed_step:>10.1f}" if s["idle_walls"]
@@ -115,6 +129,8 @@ def main():
                   f"{s['at_limit']:>8} {s['mean_outer']:>10.1f} "
                   f"{s['inner']:>7} {s['trials']:>6} {s['decrease']:>11.3e} {s['wall']:>8.1f} "
                   f"{s['wall'] / s['steps'] / fixed_step:>10.1f} {idle} "
+                  f"{s['inner_seconds'] / s['steps'] / fixed_step:>11.1f} "
+                  f"{s['inner'] / s['steps'] / fixed_newton:>12.1f} "
                   f"{s['wall'] / base['wall']:>10.2f} {s['decrease'] / base['decrease']:>14.2f}", flush=True)
     return 1 if failed else 0
 
