@@ -7,13 +7,12 @@
 A variant is an outer Hessian, optionally with the transfer's integration after a slash
 (reduced/quadrature, reduced/exact; without one, the scene's). For every (epsilon r, variant)
 pair the scene runs once, in turn, in its own process; at epsilon r below 1e-5 the outer
-iteration limit is raised to 200. From each log.csv: why each
-step's outer iteration ended (the outer_stop column), the mean outer iterations, the inner
-Newton iterations and trials, the total decrease of R over the steps (sum of
-initial_objective - energy), the wall time of the steps and the time of an r-ITR step over a
-step of the same scene on its fixed mesh (run first); "idle/fixed" is the same ratio for the
-steps whose outer solve stopped at its first check (no mesh moved), the floor of an r-ITR
-step; "inner/fixed" is the time of an r-ITR step's inner solves alone (the start-of-step solve
+iteration limit is raised to 200. From each log.csv: why each step's outer iteration ended
+(the outer_stop column), the mean outer iterations, the inner Newton iterations and trials,
+the total decrease of R over the steps (sum of initial_objective - energy), the wall time of
+the steps and the time of an r-ITR step over a step of the same scene on its fixed mesh (run
+first); "idle/fixed" is the same ratio for the steps whose outer solve stopped at its first
+check (no mesh moved), the floor of an r-ITR step; "inner/fixed" is the time of an r-ITR step's inner solves alone (the start-of-step solve
 and every trial's) over a fixed step, a floor that no cheaper outer model can lower, and
 "newton/fixed" the same for inner Newton iterations (which do not depend on the machine's
 speed). Later steps of different runs start from different states, so the decrease of R is a
@@ -33,7 +32,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from prm_variant import write_variant  # noqa: E402
 
 
-# The bar for a converging outer solve at a tight epsilon r.
+# A converging outer solve at a tight epsilon r takes at most this many outer iterations per
+# step on average.
 MAX_MEAN_OUTER = 15
 
 
@@ -85,10 +85,10 @@ def main():
         if subprocess.call([args.ritr, fixed_prm], stdout=log, stderr=subprocess.STDOUT) != 0:
             print("the fixed-mesh run failed")
             return 1
-    fixed_rows = list(csv.DictReader(open(os.path.join(work, "fixed", "log.csv"))))
-    fixed_step = sum(float(r["wall_seconds"]) for r in fixed_rows) / max(len(fixed_rows), 1)
-    fixed_newton = sum(int(r["inner_newton_iterations"]) for r in fixed_rows) / max(len(fixed_rows), 1)
-    print(f"fixed mesh: {len(fixed_rows)} steps, {fixed_step:.4f} s and {fixed_newton:.1f} Newton iterations per step")
+    fixed = summarize(os.path.join(work, "fixed", "log.csv"))
+    fixed_step = fixed["wall"] / max(fixed["steps"], 1)
+    fixed_newton = fixed["inner"] / max(fixed["steps"], 1)
+    print(f"fixed mesh: {fixed['steps']} steps, {fixed_step:.4f} s and {fixed_newton:.1f} Newton iterations per step")
     print(f"{'epsilon r':>9} {'variant':>18} {'steps':>5} {'converged':>9} {'small dec.':>10} {'no decr.':>8} {'at limit':>8} "
           f"{'outer/step':>10} {'inner':>7} "
           f"{'trials':>6} {'R decrease':>11} {'wall s':>8} {'step/fixed':>10} {'idle/fixed':>10} {'inner/fixed':>11} "
@@ -119,9 +119,8 @@ def main():
                 print(f"{epsilon:>9} {variant:>18} failed with exit code {code}")
                 continue
             s = summarize(os.path.join(work, name, "log.csv"))
-            if variant == args.require_converging and limit and (s["at_limit"] > 0 or
-                                                                   s["mean_outer"] > MAX_MEAN_OUTER):
-                failed = True
+            not_converging = (variant == args.require_converging and limit and
+                              (s["at_limit"] > 0 or s["mean_outer"] > MAX_MEAN_OUTER))
             base = base or s
             idle = (f"{sum(s['idle_walls']) / len(s['idle_walls']) / fixed_step:>10.1f}" if s["idle_walls"]
                     else f"{'-':>10}")
@@ -132,6 +131,10 @@ def main():
                   f"{s['inner_seconds'] / s['steps'] / fixed_step:>11.1f} "
                   f"{s['inner'] / s['steps'] / fixed_newton:>12.1f} "
                   f"{s['wall'] / base['wall']:>10.2f} {s['decrease'] / base['decrease']:>14.2f}", flush=True)
+            if not_converging:
+                failed = True
+                print(f"{epsilon:>9} {variant:>18} does not converge: {s['at_limit']} steps on the limit, "
+                      f"{s['mean_outer']:.1f} outer iterations per step (at most {MAX_MEAN_OUTER})", flush=True)
     return 1 if failed else 0
 
 
