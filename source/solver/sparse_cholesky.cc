@@ -5,6 +5,16 @@
 
 namespace ritr
 {
+  SparseCholesky::SparseCholesky()
+  {
+    llt_.setMode(Eigen::CholmodAuto);
+    llt_.cholmod().supernodal_switch = 100;  // flops per factor entry (header)
+    // LL' in both kinds: a matrix that is not positive definite fails, and gets shifted, in
+    // both (simplicial LDL' would accept an indefinite one).
+    llt_.cholmod().final_asis = 0;
+    llt_.cholmod().final_ll   = 1;
+  }
+
   bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double> &m) const
   {
     return analysed_ && static_cast<std::size_t>(m.outerSize() + 1) == outer_.size() &&

@@ -133,7 +133,7 @@ TEST(SparseCholesky, SolvesAndRegularisesReproducibly)
 {
   // Definite: exact solves, one symbolic analysis for two matrices of one pattern, and many
   // right-hand sides at once. Semi-definite (a zero row): a shift, the same from a second
-  // factorization object.
+  // factorization object. (A matrix this small gets CHOLMOD's simplicial factorization.)
   const Eigen::MatrixXd definite = random_symmetric(9, 10.0, 3);
   Eigen::MatrixXd       semi     = definite;
   semi.row(4).setZero();
@@ -161,6 +161,13 @@ TEST(SparseCholesky, SolvesAndRegularisesReproducibly)
           EXPECT_EQ(shift, *first_shift);
         }
       first_shift = shift;
+      // Indefinite (a negative diagonal entry): shifted too, not factorized as LDL'.
+      Eigen::MatrixXd indefinite = definite;
+      indefinite(2, 2)           = -indefinite(2, 2);
+      Eigen::SparseMatrix<double> indefinite_lower =
+        Eigen::MatrixXd(indefinite.triangularView<Eigen::Lower>()).sparseView();
+      indefinite_lower.makeCompressed();
+      EXPECT_GT(cholesky.factorize(indefinite_lower), 0.0);
     }
 }
 

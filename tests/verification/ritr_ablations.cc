@@ -233,9 +233,9 @@ TEST(RitrAblations, BeatsTheFixedMeshIn3D)
 }
 
 // The outer solve (doc/benchmarks.md, Outer solve): on the first step of the 80 m/s bar the
-// trust region on the reduced Hessian ends below the paper's truncated Newton run to its
-// 200-iteration limit at epsilon r 1e-6, in a fifth of the iterations or fewer (24 when this
-// was written), and says why it stopped.
+// trust region on the reduced Hessian ends below the paper's truncated Newton at epsilon r
+// 1e-6 (which converges there in 12 iterations with CHOLMOD's simplicial factorization and
+// ran into its 200-iteration limit with the supernodal one), and says why it stopped.
 TEST(RitrAblations, TrustRegionEndsBelowTheTightTruncatedSolve)
 {
   Scene scene = read_scene(test_support::source_dir() + "/prm/paper/bar_impact.prm");
@@ -256,7 +256,6 @@ TEST(RitrAblations, TrustRegionEndsBelowTheTightTruncatedSolve)
             << reduced.outer_iterations << ", " << name_of(outer_stop_names, *reduced.outer_stop) << ")" << std::endl;
   EXPECT_EQ(reduced.initial_objective, truncated.initial_objective);
   EXPECT_LT(reduced.energy, truncated.energy);
-  EXPECT_LE(5 * reduced.outer_iterations, truncated.outer_iterations);
   ASSERT_TRUE(reduced.outer_stop.has_value());
   EXPECT_NE(*reduced.outer_stop, OuterStop::iteration_limit);
 }
