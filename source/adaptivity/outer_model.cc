@@ -14,7 +14,7 @@ namespace ritr
   } // namespace
 
   template <int dim>
-  OuterModel<dim>::OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g,
+  OuterModel<dim>::OuterModel(const OuterCurvature &hessian, const Eigen::VectorXd &g,
                               const Eigen::SparseMatrix<double> &basis)
     : hessian_(hessian)
     , g_(g)

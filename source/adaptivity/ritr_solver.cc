@@ -40,6 +40,7 @@ namespace ritr
     , inertia_(inner.terms().template find<TransferredInertiaTerm<dim>>())
     , velocity_transfer_(materials.mesh().cells, quadrature, settings.transfer_integration)
     , sliding_(classify_sliding(materials.mesh(), settings.sliding_tolerance))
+    , carrier_(materials.mesh())
     , w_hat_(measure_barrier_.threshold())
     , youngs_modulus_(materials.of_cell(0).youngs_modulus)
   {
@@ -129,18 +130,20 @@ namespace ritr
   }
 
   template <int dim>
-  bool RitrSolver<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
-                                      Result &r, const bool near_solution, const double tolerance_scale)
+  std::optional<bool> RitrSolver<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
+                                                     const Eigen::VectorXd &targets, Result &r, const bool near_solution,
+                                                     const double tolerance_scale, const unsigned int iteration_cap)
   {
     ScopedTimer timer(r.inner_seconds);
     try
       {
-        r.inner_iterations += inner_.solve_on_mesh(u, z, targets, near_solution, tolerance_scale).iterations;
-        return true;
+        const auto report = inner_.solve_on_mesh(u, z, targets, near_solution, tolerance_scale, iteration_cap);
+        r.inner_iterations += report.iterations;
+        return report.converged;
       }
     catch (const ConvergenceError &)
       {
-        return false;  // the trial mesh is rejected like one that raises R
+        return std::nullopt;  // the trial mesh is rejected like one that raises R
       }
   }
 
@@ -204,7 +207,7 @@ namespace ritr
     measure_barrier_.set_stiffness(settings_.geometric_admissibility ? kappa_w : 0.0);
     r.initial_objective = r.objective = objective(r.z, r.u);
 
-    if (settings_.physical_admissibility && settings_.hessian == RitrHessian::reduced)
+    if (settings_.physical_admissibility && is_trust_region(settings_.hessian))
       trust_region_solve(targets, r);
     else
       line_search_solve(targets, r);
@@ -214,8 +217,15 @@ namespace ritr
     if (dynamic)
       {
         ScopedTimer timer(velocity_transfer_seconds_);
-        velocity_transfer_.set_old_mesh(u_t);
-        r.v = (r.z.head(n_u) - velocity_transfer_.project(z_t.head(n_u), r.u)) / h;
+        // The inertia's transfer is already set up from u_t to the accepted mesh: its operator
+        // projects x_t as well.
+        if (inertia_ && inertia_->transfer().candidate() == r.u)
+          r.v = (r.z.head(n_u) - inertia_->transfer().project(z_t.head(n_u))) / h;
+        else
+          {
+            velocity_transfer_.set_old_mesh(u_t);
+            r.v = (r.z.head(n_u) - velocity_transfer_.project(z_t.head(n_u), r.u)) / h;
+          }
       }
     else
       r.v = Eigen::VectorXd::Zero(n_u);
@@ -228,7 +238,7 @@ namespace ritr
   {
     const OuterSetting<dim> setting{
       terms_, basis_, free_state_,
-      [&](const Eigen::VectorXd &u, Eigen::VectorXd &z) { return solve_on_mesh(u, z, targets, r); },
+      [&](const Eigen::VectorXd &u, Eigen::VectorXd &z) { return solve_on_mesh(u, z, targets, r).has_value(); },
       [&](const Eigen::VectorXd &u, const Eigen::VectorXd &du) { return step_filter(u, du); }};
     const NewtonSettings newton = outer_newton_settings(settings_.epsilon_r, settings_.max_outer_iterations);
     const double         linear_before = outer_newton_.seconds_in_linear_solves();
@@ -273,6 +283,7 @@ namespace ritr
   void RitrSolver<dim>::trust_region_solve(const Eigen::VectorXd &targets, Result &r)
   {
     state_loose_ = tight_only_ = false;
+    pair_start_.resize(0);
     trust_region_iterations(targets, r);
     if (state_loose_)
       {
@@ -287,6 +298,20 @@ namespace ritr
         if (r.outer_iterations < settings_.max_outer_iterations)
           trust_region_iterations(targets, r);
       }
+    // The gradient at the step's end completes a curvature pair, so that pairs accumulate
+    // across steps even when each takes one outer iteration.
+    if (pair_start_.size() > 0 && pair_start_ != r.u)
+      curvature_pair_to(r.u, reduced_gradient(r.z, r.u, true));
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::curvature_pair_to(const Eigen::VectorXd &u, const Eigen::VectorXd &rest_gradient)
+  {
+    // The basis's columns are orthonormal, so B^T takes a reference step to its coordinates.
+    if (pair_start_.size() > 0)
+      quasi_newton_.update(basis_.transpose() * (u - pair_start_), rest_gradient - pair_gradient_);
+    pair_start_    = u;
+    pair_gradient_ = rest_gradient;
   }
 
   template <int dim>
@@ -296,7 +321,12 @@ namespace ritr
     // initial cell, and the region may grow to a hundred of them.
     const double initial_radius = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
     const double max_radius     = 100 * initial_radius;
-    double       radius         = initial_radius;
+    const bool   quasi_newton   = settings_.hessian == RitrHessian::quasi_newton;
+    // Quasi-Newton steps take one or two outer iterations, so the region a step ends with is
+    // where the next one starts (never below the initial radius).
+    double  step_radius = initial_radius;
+    double &radius      = quasi_newton ? carried_radius_ : step_radius;
+    radius              = std::max(radius, initial_radius);
     double       first_gradient = 0;
     MeasureBarrierModel<dim> barrier(mesh_, basis_, w_hat_, measure_barrier_.stiffness());
     const auto filter = [&](const Eigen::VectorXd &du, const Eigen::VectorXd &ddu) {
@@ -305,19 +335,36 @@ namespace ritr
     for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
       {
         terms_.set_reference(r.u);
-        auto d = terms_.reference_derivatives(r.z, terms_.candidates_at(r.z), ReferenceBlock::exact, true);
-        fold_following_prescribed(following_prescribed_, d.gx, d.hxx, d.gu, d.huu, d.hxu);
-        const Eigen::VectorXd g = basis_.transpose() * d.gu;
+        Eigen::VectorXd                g;
+        std::optional<ReducedHessian>  hessian;
+        std::optional<OuterModel<dim>> model;
+        if (quasi_newton)
+          {
+            const Eigen::VectorXd rest = reduced_gradient(r.z, r.u, true);
+            ScopedTimer           timer(r.outer_solve_seconds);
+            // A gradient at a state solved short of its tolerance is off by H_ux (x - x*), more
+            // than the change a pair measures: pairs join tightly solved states only.
+            if (!state_loose_)
+              curvature_pair_to(r.u, rest);
+            barrier.set_point(r.u);
+            g = rest + barrier.at_point().gradient;
+            quasi_newton_.with_barrier(barrier.at_point().hessian);
+            if (quasi_newton_.empty())
+              quasi_newton_.set_scale(g.norm() / initial_radius);  // steepest descent to the region's edge
+            model.emplace(quasi_newton_, g, basis_);
+          }
+        else
+          {
+            auto d = terms_.reference_derivatives(r.z, terms_.candidates_at(r.z), ReferenceBlock::exact, true);
+            fold_following_prescribed(following_prescribed_, d.gx, d.hxx, d.gu, d.huu, d.hxu);
+            g = basis_.transpose() * d.gu;
+            ScopedTimer timer(r.outer_solve_seconds);
+            hessian.emplace(d.huu, d.hxx, d.hxu, r.z.size(), free_state_, basis_, state_cholesky_);
+            barrier.set_point(r.u);
+            model.emplace(*hessian, g, basis_);
+          }
         if (r.outer_iterations == 0)
           first_gradient = g.norm();
-        std::optional<ReducedHessian>   hessian;
-        std::optional<OuterModel<dim>> model;
-        {
-          ScopedTimer timer(r.outer_solve_seconds);
-          hessian.emplace(d.huu, d.hxx, d.hxu, r.z.size(), free_state_, basis_, state_cholesky_);
-          barrier.set_point(r.u);
-          model.emplace(*hessian, g, basis_);
-        }
         // The forcing term's cap is tight because |g| often stays near its first value while
         // the mesh creeps along a flat valley: with a cap of 0.1 the steps then left a tenth
         // of the model's gradient each time, and late ball-on-spikes steps took 76-200
@@ -359,7 +406,8 @@ namespace ritr
               }
             else
               {
-                const auto [trial_objective, u_trial, z_trial] = trial(step, *hessian, targets, r);
+                const auto [trial_objective, u_trial, z_trial] =
+                  trial(step, predicted_state_change(step, hessian, r.z, r.u), targets, r);
                 const double rho         = (trial_objective - r.objective) / step.predicted;
                 const double step_length = model->length(step.p);
                 if (!(rho >= 0.25))
@@ -386,15 +434,51 @@ namespace ritr
   }
 
   template <int dim>
+  Eigen::VectorXd RitrSolver<dim>::reduced_gradient(const Eigen::VectorXd &z, const Eigen::VectorXd &u,
+                                                    const bool without_measure_barrier)
+  {
+    terms_.set_reference(u);
+    const CollisionCandidates candidates = terms_.candidates_at(z);
+    Eigen::VectorXd           gu         = terms_.reference_gradient(z, candidates, without_measure_barrier);
+    if (!following_prescribed_.empty())
+      {
+        // A sliding Dirichlet node's prescribed position moves with its reference (x_p = u_p + a
+        // constant): the composition's gradient adds the state gradient there.
+        Eigen::VectorXd gx = Eigen::VectorXd::Zero(z.size());
+        terms_.add_energy_gradient(z, candidates, gx);
+        for (const int e : following_prescribed_)
+          gu[e] += gx[e];
+      }
+    return basis_.transpose() * gu;
+  }
+
+  template <int dim>
+  Eigen::VectorXd RitrSolver<dim>::predicted_state_change(const typename OuterModel<dim>::Step &step,
+                                                          const std::optional<ReducedHessian>   &hessian,
+                                                          const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+  {
+    // The implicit-function response of x to first order, or without the reduced Hessian's
+    // factor the current deformation carried to the moved nodes (prescribed entries stay).
+    if (hessian)
+      return hessian->state_response(step.p);
+    Eigen::VectorXd       dz = Eigen::VectorXd::Zero(z.size());
+    const Eigen::VectorXd dx = carrier_.carried(z.head(u.size()), u, step.du);
+    for (Eigen::Index i = 0; i < dx.size(); ++i)
+      if (!inner_.kinematic()[i])
+        dz[i] = dx[i];
+    return dz;
+  }
+
+  template <int dim>
   std::tuple<double, Eigen::VectorXd, Eigen::VectorXd>
-  RitrSolver<dim>::trial(const typename OuterModel<dim>::Step &step, const ReducedHessian &hessian,
+  RitrSolver<dim>::trial(const typename OuterModel<dim>::Step &step, Eigen::VectorXd dz,
                          const Eigen::VectorXd &targets, Result &r)
   {
     ++r.line_search_trials;
     const Eigen::VectorXd u = r.u + step.du;
-    // The state at the trial mesh to first order, kept short of any contact; the inner Newton
-    // polishes it (starting with the exact Hessian, which converges from there in ~2 steps).
-    Eigen::VectorXd dz = hessian.state_response(step.p);
+    // The state at the trial mesh predicted (predicted_state_change), kept short of any
+    // contact; the inner Newton polishes it (starting with the exact Hessian, which converges
+    // from there in ~2 steps).
     for (const int e : following_prescribed_)
       dz[e] = step.du[e];
     if (terms_.has_contact())
@@ -409,13 +493,16 @@ namespace ritr
         1.0 :
         std::clamp(step.du.template lpNorm<Eigen::Infinity>() / settings_.epsilon_r, 1.0,
                    std::max(1.0, settings_.inner_tolerance_factor));
-    last_trial_loose_ = scale > 1;
-    bool solved       = solve_on_mesh(u, z, trial_target, r, true, scale);
+    const unsigned int  cap    = tight_only_ ? 0 : settings_.trial_iterations;
+    std::optional<bool> solved = solve_on_mesh(u, z, trial_target, r, true, scale, cap);
     if (!solved)
       {
         z      = r.z;  // a poor prediction: the warm start of the backtracking path
-        solved = solve_on_mesh(u, z, trial_target, r, false, scale);
+        solved = solve_on_mesh(u, z, trial_target, r, false, scale, cap);
       }
+    // A state stopped short of its tolerance (loosened or capped): R there bounds R at the
+    // mesh from above, so an accepted trial still lowers R.
+    last_trial_loose_ = scale > 1 || (solved && !*solved);
     return {solved ? objective(z, u) : std::numeric_limits<double>::infinity(), u, z};
   }
 

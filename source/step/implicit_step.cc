@@ -1,6 +1,7 @@
 #include <ritr/step/implicit_step.h>
 #include <ritr/terms/friction_term.h>
 
+#include <cmath>
 #include <limits>
 
 namespace ritr
@@ -19,16 +20,33 @@ namespace ritr
   typename ImplicitStep<dim>::Report ImplicitStep<dim>::solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z,
                                                                       const Eigen::VectorXd &targets,
                                                                       const bool             near_solution,
-                                                                      const double           tolerance_scale)
+                                                                      const double           tolerance_scale,
+                                                                      const unsigned int     iteration_cap)
   {
     terms_.set_reference(u);
     NewtonSettings newton = settings_.newton;
     newton.start_exact    = near_solution;
     newton.tolerance *= tolerance_scale;
-    const NewtonResult r  = newton_.minimize(objective_, z, kinematic_, targets, newton);
-    if (r.status != NewtonStatus::converged)
+    const bool capped = iteration_cap > 0 && iteration_cap < newton.max_iterations;
+    if (capped)
+      newton.max_iterations = iteration_cap;
+    const NewtonResult r = newton_.minimize(objective_, z, kinematic_, targets, newton);
+    // Stopped by the cap: the state is admissible (every accepted Newton step is), but only
+    // once the prescribed entries have reached their targets.
+    const bool at_cap = capped && r.status == NewtonStatus::iteration_limit && std::isfinite(r.energy) &&
+                        prescribed_reached(z, targets);
+    if (r.status != NewtonStatus::converged && !at_cap)
       throw ConvergenceError(r.failure);
-    return {r.iterations, r.line_search_trials, r.energy};
+    return {r.iterations, r.line_search_trials, r.energy, r.status == NewtonStatus::converged};
+  }
+
+  template <int dim>
+  bool ImplicitStep<dim>::prescribed_reached(const Eigen::VectorXd &z, const Eigen::VectorXd &targets) const
+  {
+    for (std::size_t i = 0; i < kinematic_.size(); ++i)
+      if (kinematic_[i] && z[i] != targets[i])
+        return false;
+    return true;
   }
 
   template <int dim>

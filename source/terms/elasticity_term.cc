@@ -50,6 +50,30 @@ namespace ritr
     }
 
     constexpr std::size_t grain = 256;
+
+    // Adds per-cell vectors (cell_vector(c, xe, ue, out) fills the dim * (dim + 1) entries of
+    // cell c) into g: computed in parallel, scattered in cell order, so that the sum is the same
+    // on any number of threads.
+    template <int dim, typename CellVector>
+    void add_cell_vectors(const SimplexMesh<dim> &mesh, const TermPoint &p, Eigen::VectorXd &g,
+                          const CellVector &cell_vector)
+    {
+      constexpr int       n = dim * (dim + 1);
+      std::vector<double> cell_vectors(static_cast<std::size_t>(mesh.n_cells()) * n);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.n_cells(), grain),
+                        [&](const tbb::blocked_range<std::size_t> &range) {
+                          CellNodes<dim, double> xe, ue;
+                          for (std::size_t c = range.begin(); c != range.end(); ++c)
+                            {
+                              gather<dim>(p.z, mesh.cells[c], xe);
+                              gather<dim>(p.u, mesh.cells[c], ue);
+                              cell_vector(c, xe, ue, cell_vectors.data() + c * n);
+                            }
+                        });
+      for (std::size_t c = 0; c < mesh.n_cells(); ++c)
+        for (int i = 0; i < n; ++i)
+          g[mesh.cells[c][i / dim] * dim + i % dim] += cell_vectors[c * n + i];
+    }
   } // namespace
 
   // Reductions are deterministic: the cell range is split the same way and partial sums are
@@ -77,34 +101,18 @@ namespace ritr
   template <int dim>
   void ElasticityTerm<dim>::add_gradient(const TermPoint &p, Eigen::VectorXd &g) const
   {
-    // Each cell writes its own slice in parallel; the scatter into g runs in cell order, so
-    // the sum is the same on any number of threads.
-    constexpr int       n    = dim * (dim + 1);
-    const auto         &mesh = materials_.mesh();
-    std::vector<double> cell_gradients(static_cast<std::size_t>(mesh.n_cells()) * n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.n_cells(), grain),
-                      [&](const tbb::blocked_range<std::size_t> &range) {
-                        CellNodes<dim, double> xe, ue;
-                        for (std::size_t c = range.begin(); c != range.end(); ++c)
-                          {
-                            gather<dim>(p.z, mesh.cells[c], xe);
-                            gather<dim>(p.u, mesh.cells[c], ue);
-                            const auto geo = cell_geometry<dim>(xe, ue);
-                            const auto P   = first_piola_stress<dim>(materials_.of_cell(c), geo.F);
-                            double    *out = cell_gradients.data() + c * n;
-                            for (int a = 0; a <= dim; ++a)
-                              for (int k = 0; k < dim; ++k)
-                                {
-                                  double d = 0;
-                                  for (int j = 0; j < dim; ++j)
-                                    d += P[k][j] * geo.shape_gradients[a][j];
-                                  out[a * dim + k] = weight_ * geo.measure * d;
-                                }
-                          }
-                      });
-    for (std::size_t c = 0; c < mesh.n_cells(); ++c)
-      for (int i = 0; i < n; ++i)
-        g[mesh.cells[c][i / dim] * dim + i % dim] += cell_gradients[c * n + i];
+    add_cell_vectors<dim>(materials_.mesh(), p, g, [&](const std::size_t c, const auto &xe, const auto &ue, double *out) {
+      const auto geo = cell_geometry<dim>(xe, ue);
+      const auto P   = first_piola_stress<dim>(materials_.of_cell(c), geo.F);
+      for (int a = 0; a <= dim; ++a)
+        for (int k = 0; k < dim; ++k)
+          {
+            double d = 0;
+            for (int j = 0; j < dim; ++j)
+              d += P[k][j] * geo.shape_gradients[a][j];
+            out[a * dim + k] = weight_ * geo.measure * d;
+          }
+    });
   }
 
   template <int dim>
@@ -213,6 +221,33 @@ namespace ritr
           if (coupling)
             d.gx[dof] += cell_gradients[c * 2 * n + i];
         }
+  }
+
+  template <int dim>
+  void ElasticityTerm<dim>::add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const
+  {
+    // Moving the reference nodes by du changes the edge matrix by G Dm with
+    // G = sum_a du_a (x) grad N_a, so that dF = -F G and d|T| = |T| tr G: the cell's energy
+    // changes by |T| (Psi I - F^T P) : G, the Eshelby (energy-momentum) stress against G.
+    add_cell_vectors<dim>(materials_.mesh(), p, d.gu, [&](const std::size_t c, const auto &xe, const auto &ue, double *out) {
+      const auto      geo      = cell_geometry<dim>(xe, ue);
+      const Material &material = materials_.of_cell(c);
+      const auto      P        = first_piola_stress<dim>(material, geo.F);
+      const double    psi      = strain_energy_density<dim, double>(material, geo.F);
+      for (int a = 0; a <= dim; ++a)
+        for (int k = 0; k < dim; ++k)
+          {
+            double s = 0;
+            for (int j = 0; j < dim; ++j)
+              {
+                double eshelby = k == j ? psi : 0.0;  // (Psi I - F^T P)_kj
+                for (int i = 0; i < dim; ++i)
+                  eshelby -= geo.F[i][k] * P[i][j];
+                s += eshelby * geo.shape_gradients[a][j];
+              }
+            out[a * dim + k] = weight_ * geo.measure * s;
+          }
+    });
   }
 
   template class ElasticityTerm<1>;

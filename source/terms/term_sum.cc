@@ -148,6 +148,20 @@ namespace ritr
     return d;
   }
 
+  template <int dim>
+  Eigen::VectorXd TermSum<dim>::reference_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                                   const bool without_mesh_terms) const
+  {
+    const TermPoint                  p{z, reference_, candidates};
+    ReferenceDerivativeAssembly<dim> assembly(mesh_.cells);
+    assembly.gu = Eigen::VectorXd::Zero(reference_.size());
+    assembly.huu.use_cell_blocks();  // where the terms without a gradient of their own leave H_uu
+    for (const auto &t : terms_)
+      if (!without_mesh_terms || t->depends_on_state())
+        t->add_reference_gradient(p, assembly);
+    return std::move(assembly.gu);
+  }
+
   template class TermSum<1>;
   template class TermSum<2>;
   template class TermSum<3>;

@@ -112,6 +112,21 @@ namespace ritr
   }
 
   template <int dim>
+  void TransferredInertiaTerm<dim>::add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const
+  {
+    if (!active_)
+      return;
+    if (adds_projected_predictor())
+      {
+        add_reference_derivatives(p, ReferenceBlock::exact, false, d);  // the ablation: no fast path
+        return;
+      }
+    mass_.add_reference_gradient(p, d);
+    ScopedTimer timer(seconds_);
+    d.gu -= density_ * transfer_.gradient_u(p.x(), predictor_);
+  }
+
+  template <int dim>
   void TransferredInertiaTerm<dim>::add_projection_response(const ReferenceDerivativeAssembly<dim> &kinetic,
                                                             Triplets                               &huu) const
   {

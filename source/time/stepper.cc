@@ -100,6 +100,7 @@ namespace ritr
     settings.max_outer_iterations      = a.max_iterations;
     settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
     settings.inner_tolerance_factor = a.inner_tolerance_factor;
+    settings.trial_iterations       = a.trial_iterations;
     settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
     settings.transfer_integration      = problem.transfer_integration();
     settings.sliding_dirichlet_nodes   = problem.sliding_dirichlet_nodes;
@@ -140,10 +141,10 @@ namespace ritr
       throw InputError(scene.where("Adaptivity/admissibility") +
                        ": without physical admissibility contact is not supported");
     if (!settings.sliding_dirichlet_nodes.empty() &&
-        (settings.hessian != RitrHessian::reduced || !settings.physical_admissibility ||
+        (!is_trust_region(settings.hessian) || !settings.physical_admissibility ||
          !settings.geometric_admissibility))
       throw InputError(problem.sliding_dirichlet_entry +
-                       ": needs Adaptivity/hessian = reduced and admissibility = both (nodes slide along facets)");
+                       ": needs Adaptivity/hessian = reduced or quasi-newton and admissibility = both (nodes slide along facets)");
     auto solver = std::make_unique<RitrSolver<dim>>(*problem.materials, *implicit_step, settings,
                                                     problem.transfer_quadrature());
     return std::make_unique<RitrStepper<dim>>(std::move(implicit_step), std::move(solver));

@@ -2,6 +2,7 @@
 // old cells it overlaps, the quadratic integrand integrated exactly on the overlap polygons
 // (triangle_overlap.h), with dual numbers over the candidate's six coordinates for the
 // derivatives in u. Why the reference cell and the symbolic shift: transfer_operator.h.
+#include <ritr/common/first_order_dual.h>
 #include <ritr/common/second_order_dual.h>
 #include <ritr/transfer/transfer_operator.h>
 #include <ritr/transfer/triangle_overlap.h>
@@ -161,31 +162,57 @@ namespace ritr::transfer
       (void)c, (void)x, (void)field, (void)terms;
   }
 
+  namespace
+  {
+    // The cell terms of candidate cell c (candidate triangle U) from dual numbers of type S over
+    // its six coordinates: value, grad_x and grad_u, and with second-order duals also hess_u and
+    // the mixed block.
+    template <typename S, typename Field, typename Locator, typename Terms>
+    void dual_cell_terms(const unsigned int c, const Eigen::Matrix<double, 2, 3> &U, const Eigen::Matrix<double, 2, 3> &Xc,
+                         const Field &field, const std::vector<int> &overlaps, const Locator &locator, Terms &terms)
+    {
+      constexpr bool               second = std::is_same_v<S, SecondOrderDual<6>>;
+      const auto                   K      = candidate_triangle<S>(U);
+      const TriangleBarycentric<S> lambda(K);
+      const auto                   P = field_moments<S>(c, K, lambda, field, overlaps, locator);
+      terms.value                    = 0;
+      terms.grad_u.setZero();
+      if constexpr (second)
+        terms.hess_u.setZero();
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 2; ++k)
+          {
+            const S &p = P[a][k];
+            terms.value += Xc(k, a) * p.value;
+            terms.grad_x[a * 2 + k] = p.value;
+            terms.grad_u += Xc(k, a) * p.grad;
+            if constexpr (second)
+              {
+                terms.hess_u += Xc(k, a) * p.hess;
+                terms.mixed.row(a * 2 + k) = p.grad.transpose();
+              }
+          }
+    }
+  } // namespace
+
   template <int dim>
   void TransferOperator<dim>::exact_cell_derivatives(const unsigned int c, const Eigen::VectorXd &x,
                                                      const std::vector<OldField> &field, CellTerms &terms) const
   {
     if constexpr (dim == 2)
-      {
-        using S                            = SecondOrderDual<6>;
-        const auto                   K      = candidate_triangle<S>(gather<dim>(u_, cells_[c]));
-        const TriangleBarycentric<S> lambda(K);
-        const auto                   P      = field_moments<S>(c, K, lambda, field, overlaps_[c], locator_);
-        const auto                   Xc     = gather<dim>(x, cells_[c]);
-        terms.value = 0;
-        terms.grad_u.setZero();
-        terms.hess_u.setZero();
-        for (int a = 0; a < 3; ++a)
-          for (int k = 0; k < 2; ++k)
-            {
-              const S &p = P[a][k];
-              terms.value += Xc(k, a) * p.value;
-              terms.grad_x[a * 2 + k] = p.value;
-              terms.grad_u += Xc(k, a) * p.grad;
-              terms.hess_u += Xc(k, a) * p.hess;
-              terms.mixed.row(a * 2 + k) = p.grad.transpose();
-            }
-      }
+      dual_cell_terms<SecondOrderDual<6>>(c, gather<dim>(u_, cells_[c]), gather<dim>(x, cells_[c]), field, overlaps_[c],
+                                          locator_, terms);
+    else
+      (void)c, (void)x, (void)field, (void)terms;
+  }
+
+  template <int dim>
+  void TransferOperator<dim>::exact_cell_gradient(const unsigned int c, const Eigen::VectorXd &x,
+                                                  const std::vector<OldField> &field, CellTerms &terms) const
+  {
+    if constexpr (dim == 2)
+      dual_cell_terms<FirstOrderDual<6>>(c, gather<dim>(u_, cells_[c]), gather<dim>(x, cells_[c]), field, overlaps_[c],
+                                         locator_, terms);
     else
       (void)c, (void)x, (void)field, (void)terms;
   }
@@ -196,7 +223,9 @@ namespace ritr::transfer
   template void TransferOperator<dim>::exact_cell_values(unsigned int, const Eigen::VectorXd *,                        \
                                                          const std::vector<OldField> &, CellTerms &) const;            \
   template void TransferOperator<dim>::exact_cell_derivatives(unsigned int, const Eigen::VectorXd &,                   \
-                                                              const std::vector<OldField> &, CellTerms &) const;
+                                                              const std::vector<OldField> &, CellTerms &) const;   \
+  template void TransferOperator<dim>::exact_cell_gradient(unsigned int, const Eigen::VectorXd &,                      \
+                                                           const std::vector<OldField> &, CellTerms &) const;
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)

@@ -288,8 +288,10 @@ namespace ritr::transfer
   {
     if (integration_ == TransferIntegration::exact)
       {
-        if constexpr (grad_u || hess_u || mixed)
+        if constexpr (hess_u || mixed)
           exact_cell_derivatives(c, *x, field, terms);
+        else if constexpr (grad_u)
+          exact_cell_gradient(c, *x, field, terms);
         else
           exact_cell_values(c, x, field, terms);
         return;

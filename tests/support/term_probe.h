@@ -82,6 +82,12 @@ namespace ritr::test_support
       terms.set_reference(u);
       return terms.reference_derivatives(z, terms.candidates_at(z), block, true);
     }
+    // dR/du alone, by the first-order path (what the quasi-Newton outer solve takes).
+    Eigen::VectorXd reference_gradient(const Eigen::VectorXd &z, const Eigen::VectorXd &u) const
+    {
+      terms.set_reference(u);
+      return terms.reference_gradient(z, terms.candidates_at(z));
+    }
   };
 
   // u with every entry moved by a uniform random amount in [-size, size].

@@ -70,6 +70,7 @@ namespace
     // The collision mesh is shared: every evaluation sets its reference through the sum.
     const auto value_at = [&](const Eigen::VectorXd &v) { return probe.objective(z, v); };
     EXPECT_LT(test_support::relative_error(d.gu, test_support::fd_gradient(value_at, u, 1e-6)), 1e-6);
+    EXPECT_LT(test_support::relative_error(probe.reference_gradient(z, u), d.gu), 1e-12);  // the first-order path
     const auto gu_at = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(probe.derivatives(z, v).gu); };
     EXPECT_LT(test_support::relative_error(test_support::dense(d.huu, u.size(), u.size()),
                                            test_support::fd_jacobian(gu_at, u, 1e-6)),

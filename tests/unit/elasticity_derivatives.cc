@@ -69,6 +69,7 @@ namespace
     EXPECT_LT(test_support::relative_error(test_support::dense(joint.hxx, n, n), h), 1e-10);
     const auto f_u = [&](const Eigen::VectorXd &v) { return probe.energy(x, v); };
     EXPECT_LT(test_support::relative_error(joint.gu, test_support::fd_gradient(f_u, u, 1e-7)), 1e-6);
+    EXPECT_LT(test_support::relative_error(probe.reference_gradient(x, u), joint.gu), 1e-12);  // the first-order path
     const auto gu_of_u = [&](const Eigen::VectorXd &v) { return Eigen::VectorXd(probe.derivatives(x, v).gu); };
     EXPECT_LT(test_support::relative_error(test_support::dense(joint.huu, n, n), test_support::fd_jacobian(gu_of_u, u, 1e-7)),
               1e-5);

@@ -1,7 +1,8 @@
 // Finite-difference checks of the assembled r-ITR objective R(x, u) (elasticity, gravity,
 // inertia with the transferred predictor, and the uncorrected inertia's projected-predictor
-// term with its response) in 1D and 2D, for every inertia form and predictor projection. The
-// terms are checked on their own elsewhere; this checks how their sum composes them.
+// term with its response) in 1D and 2D, for every inertia form and predictor projection, and
+// of the first-order path to g_u alone against the second-order one. The terms are checked on
+// their own elsewhere; this checks how their sum composes them.
 #include <ritr/adaptivity/ritr_options.h>
 #include <ritr/terms/body_force_term.h>
 #include <ritr/terms/elasticity_term.h>
@@ -51,6 +52,9 @@ namespace
     const auto r_x = [&](const Eigen::VectorXd &y) { return probe.objective(y, u); };
     EXPECT_LT(test_support::relative_error(d.gu, test_support::fd_gradient(r_u, u, step)), tolerance);
     EXPECT_LT(test_support::relative_error(d.gx, test_support::fd_gradient(r_x, x, step)), tolerance);
+    // The first-order path (the Eshelby stress, first-order duals on the exact transfer) gives
+    // the same g_u to round-off.
+    EXPECT_LT(test_support::relative_error(probe.reference_gradient(x, u), d.gu), 1e-12);
 
     // Second derivatives against differences of the first.
     const auto g_u      = [&](const Eigen::VectorXd &w) { return Eigen::VectorXd(probe.derivatives(x, w).gu); };

@@ -179,3 +179,7 @@ TEST(RitrOptimality1D, InexactInnerSolvesReachTheSameMinimum)
   std::cout << "outer iterations / seconds: tight " << tight.first << " / " << tight.second << ", inexact "
             << loose.first << " / " << loose.second << std::endl;
 }
+
+// The first-order outer solve (reduced gradient, quasi-Newton curvature) reaches the same
+// brute-force mesh and energy.
+TEST(RitrOptimality1D, QuasiNewtonMatchesBruteForceMinimum) { check_optimality(RitrHessian::quasi_newton); }

@@ -1,7 +1,8 @@
 #pragma once
 // The model of one outer trust-region iteration and the step it proposes. The model is
 //   m(p) = (g - g_b).p + 1/2 p.(S - H_b) p + b(u + B p) - b(u)   in the sliding basis,
-// with S the exact reduced Hessian (reduced_hessian.h) and b the reference measure barrier,
+// with S the exact reduced Hessian (reduced_hessian.h) or its quasi-Newton approximation
+// (quasi_newton_curvature.h) and b the reference measure barrier,
 // whose gradient g_b and Hessian H_b at u are part of g and S: quadratic in the rest of R,
 // exact in the barrier (measure_barrier_model.h). A quadratic barrier model sent CG steps into the
 // barrier, and cutting them to their best fraction made most of the bar's steps at epsilon r
@@ -14,7 +15,7 @@
 // lengths |p|_M / sigma^1/2 are Euclidean lengths for steps that move no cell near the
 // barrier, so that radii are lengths.
 #include <ritr/adaptivity/measure_barrier_model.h>
-#include <ritr/adaptivity/reduced_hessian.h>
+#include <ritr/adaptivity/outer_curvature.h>
 #include <ritr/solver/shifted_sparse_inverse.h>
 
 #include <functional>
@@ -26,7 +27,7 @@ namespace ritr
   {
   public:
     // `g` in basis coordinates.
-    OuterModel(const ReducedHessian &hessian, const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis);
+    OuterModel(const OuterCurvature &hessian, const Eigen::VectorXd &g, const Eigen::SparseMatrix<double> &basis);
 
     struct Step
     {
@@ -57,7 +58,7 @@ namespace ritr
     // sigma I + a barrier Hessian.
     Eigen::SparseMatrix<double> metric(const Eigen::SparseMatrix<double> &barrier_hessian) const;
 
-    const ReducedHessian              &hessian_;
+    const OuterCurvature              &hessian_;
     const Eigen::VectorXd             &g_;
     const Eigen::SparseMatrix<double> &basis_;
     ShiftedSparseInverse               preconditioner_;  // CG's, the inverse of a metric

@@ -13,6 +13,7 @@
 // dense as matrix-free, hence the limit of 500. The same factor gives the
 // implicit-function response of x, dx = -H_xx^-1 H_xu B p, which predicts the state at a
 // trial mesh.
+#include <ritr/adaptivity/outer_curvature.h>
 #include <ritr/solver/newton.h>
 #include <ritr/solver/sparse_cholesky.h>
 
@@ -22,7 +23,7 @@
 
 namespace ritr
 {
-  class ReducedHessian
+  class ReducedHessian : public OuterCurvature
   {
   public:
     // Blocks as assembled by TermSum::reference_derivatives (state numbering for x, n_z entries;
@@ -33,7 +34,7 @@ namespace ritr
                    SparseCholesky &cholesky, Eigen::Index dense_limit = 500);
 
     // S p for p in basis coordinates.
-    Eigen::VectorXd apply(const Eigen::VectorXd &p) const;
+    Eigen::VectorXd apply(const Eigen::VectorXd &p) const override;
     // The first-order change of the whole state z for the reference step B p (prescribed
     // entries do not move).
     Eigen::VectorXd state_response(const Eigen::VectorXd &p) const;

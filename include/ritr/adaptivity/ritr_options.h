@@ -19,14 +19,22 @@ namespace ritr
   // `filtered` keeps only the entries of the response dx/du above a relative threshold.
   // Both of the latter are dense: for small meshes and for comparison only. `reduced` applies
   // the exact reduced Hessian matrix-free (reduced_hessian.h) inside a trust-region Newton-CG
-  // that follows its negative curvature instead of shifting it away.
+  // that follows its negative curvature instead of shifting it away. `quasi_newton` runs the
+  // same trust-region iteration on first derivatives alone: the reduced gradient is the
+  // partial derivative of R in u at the solved state, and its curvature a limited-memory BFGS
+  // approximation (quasi_newton_curvature.h); an outer iteration then costs about one warm
+  // inner solve.
   enum class RitrHessian
   {
     truncated,
     full,
     filtered,
-    reduced
+    reduced,
+    quasi_newton
   };
+
+  // The trust-region outer solves (physical admissibility kept at every trial mesh).
+  inline bool is_trust_region(const RitrHessian h) { return h == RitrHessian::reduced || h == RitrHessian::quasi_newton; }
 
   enum class PredictorProjection
   {
@@ -56,10 +64,11 @@ namespace ritr
     {{TransferIntegrationChoice::automatic, "auto"},
      {TransferIntegrationChoice::exact, "exact"},
      {TransferIntegrationChoice::quadrature, "quadrature"}}};
-  inline constexpr EnumNames<RitrHessian, 4> ritr_hessian_names{{{RitrHessian::truncated, "truncated"},
+  inline constexpr EnumNames<RitrHessian, 5> ritr_hessian_names{{{RitrHessian::truncated, "truncated"},
                                                                   {RitrHessian::full, "full"},
                                                                   {RitrHessian::filtered, "filtered"},
-                                                                  {RitrHessian::reduced, "reduced"}}};
+                                                                  {RitrHessian::reduced, "reduced"},
+                                                                  {RitrHessian::quasi_newton, "quasi-newton"}}};
   inline constexpr EnumNames<InertiaForm, 2> inertia_form_names{
     {{InertiaForm::corrected, "corrected"}, {InertiaForm::uncorrected, "uncorrected"}}};
   inline constexpr EnumNames<PredictorProjection, 2> predictor_projection_names{
@@ -70,7 +79,7 @@ namespace ritr
                                                                     {Admissibility::physical, "physical"},
                                                                     {Admissibility::both, "both"}}};
 
-  RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered|reduced
+  RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered|reduced|quasi-newton
   InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected
   PredictorProjection predictor_projection_from(const std::string &name);  // in-|after-optimization
   Admissibility       admissibility_from(const std::string &name);         // none|geometric|physical|both

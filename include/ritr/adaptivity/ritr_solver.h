@@ -11,8 +11,10 @@
 // (5.4, line search on R with the Newton driver), inertia corrected | uncorrected (4.3),
 // projection in | after optimization (4.1), and admissibility geometric and/or physical
 // (4.5; without physical admissibility x and u are minimised jointly).
+#include <ritr/adaptivity/deformation_carrier.h>
 #include <ritr/adaptivity/outer_model.h>
 #include <ritr/adaptivity/outer_stop.h>
+#include <ritr/adaptivity/quasi_newton_curvature.h>
 #include <ritr/adaptivity/reduced_hessian.h>
 #include <ritr/adaptivity/reference_penalties.h>
 #include <ritr/adaptivity/ritr_options.h>
@@ -21,6 +23,7 @@
 #include <ritr/terms/measure_barrier_term.h>
 #include <ritr/terms/transferred_inertia_term.h>
 
+#include <optional>
 #include <tuple>
 
 namespace ritr
@@ -39,6 +42,9 @@ namespace ritr
     // Inexact inner solves: a trial's Newton tolerance is loosened by min(this, |du|_inf /
     // epsilon_r) (at least 1); the step then ends with a tight solve at its mesh.
     double       inner_tolerance_factor  = 1;
+    // Inexact inner solves: a trial's Newton stops after this many iterations (0: at its
+    // tolerance); the step then ends with a tight solve at its mesh.
+    unsigned int trial_iterations        = 0;
     unsigned int max_outer_iterations    = 0;
     double       sliding_tolerance       = 0;  // eps_b
     double       filter_threshold        = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
@@ -95,15 +101,30 @@ namespace ritr
     // A step whose accepted state was solved loosely goes on from a tight solve at its mesh.
     void trust_region_solve(const Eigen::VectorXd &targets, Result &r);
     void trust_region_iterations(const Eigen::VectorXd &targets, Result &r);
-    // R at the trial mesh r.u + step.du, with the state predicted and then solved; returns
-    // (R or +infinity if the inner solve failed, u, z).
+    // R at the trial mesh r.u + step.du, with the state r.z + dz (kept short of contact) solved;
+    // returns (R or +infinity if the inner solve failed, u, z).
     std::tuple<double, Eigen::VectorXd, Eigen::VectorXd> trial(const typename OuterModel<dim>::Step &step,
-                                                               const ReducedHessian &hessian,
-                                                               const Eigen::VectorXd &targets, Result &r);
-    // x = argmin E(., u) warm-started from z (`near_solution`: predicted to first order);
-    // false if the inner solve failed.
-    bool solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets, Result &r,
-                       bool near_solution = false, double tolerance_scale = 1.0);
+                                                               Eigen::VectorXd dz, const Eigen::VectorXd &targets,
+                                                               Result &r);
+    // The state's change at the trial mesh of `step` from (z, u): the implicit-function response
+    // with the reduced Hessian, else the deformation carried over (deformation_carrier.h).
+    Eigen::VectorXd predicted_state_change(const typename OuterModel<dim>::Step &step,
+                                           const std::optional<ReducedHessian> &hessian, const Eigen::VectorXd &z,
+                                           const Eigen::VectorXd &u) const;
+    // B^T dR/du at the solved state z on mesh u: the reduced gradient, no solve needed
+    // (dE/dx = 0 there), with sliding Dirichlet nodes' prescribed positions following u;
+    // optionally without the measure barrier's part (the quasi-Newton curvature's gradient).
+    Eigen::VectorXd reduced_gradient(const Eigen::VectorXd &z, const Eigen::VectorXd &u,
+                                     bool without_measure_barrier = false);
+    // Quasi-Newton: the curvature pair from the last tightly solved state of the step to the
+    // one at mesh u with the given gradient (without the measure barrier), which starts the next.
+    void curvature_pair_to(const Eigen::VectorXd &u, const Eigen::VectorXd &rest_gradient);
+    // x = argmin E(., u) warm-started from z (`near_solution`: predicted to first order), with
+    // the tolerance loosened by `tolerance_scale` and Newton stopped after `iteration_cap`
+    // iterations (0: none); whether it converged, nothing if the inner solve failed.
+    std::optional<bool> solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
+                                      Result &r, bool near_solution = false, double tolerance_scale = 1.0,
+                                      unsigned int iteration_cap = 0);
     // R at (z, u).
     double objective(const Eigen::VectorXd &z, const Eigen::VectorXd &u);
     // Largest step fraction in (0, 1] keeping every reference cell above a fifth of its measure.
@@ -125,6 +146,12 @@ namespace ritr
     transfer::TransferOperator<dim>      velocity_transfer_;
     double                               velocity_transfer_seconds_ = 0;
     std::vector<SlidingConstraint<dim>>  sliding_;
+    DeformationCarrier<dim>              carrier_;
+    // The quasi-Newton outer curvature, kept across steps, and the mesh of the step's last
+    // tightly solved state (empty: none yet) with its gradient without the measure barrier.
+    QuasiNewtonCurvature                 quasi_newton_;
+    Eigen::VectorXd                      pair_start_, pair_gradient_;
+    double                               carried_radius_ = 0;  // the region's radius at the last step's end
     // u moves in the span of basis_ (n_u x m): every direction for interior nodes, the
     // tangents of the sliding facet or edge for boundary nodes, none for corners and
     // Dirichlet nodes. Sliding thus holds exactly, not through a penalty.

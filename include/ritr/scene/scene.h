@@ -84,7 +84,8 @@ namespace ritr
     Admissibility       admissibility = Admissibility::both;
     double      epsilon_r         = 1e-6;         // on |du|_inf, in units of the mesh's size
     double      decrease_tolerance = 0;           // reduced Hessian: on the predicted decrease of R; 0: sqrt(epsilon_r)
-    double      inner_tolerance_factor = 1;       // reduced Hessian: trials' inner tolerance up to this times looser
+    double      inner_tolerance_factor = 1;       // trust region: trials' inner tolerance up to this times looser
+    unsigned    trial_iterations  = 0;            // trust region: Newton iterations per trial's inner solve; 0: all
     double      sliding_tolerance = 1e-6;         // eps_b
     double      measure_barrier_stiffness = 0;    // 0: automatic
     unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic

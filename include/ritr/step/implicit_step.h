@@ -41,6 +41,7 @@ namespace ritr
     {
       unsigned int iterations = 0, line_search_trials = 0;
       double       energy = 0;
+      bool         converged = true;  // false: stopped at an iteration cap (solve_on_mesh)
     };
 
     // First solve of a step, on its start-of-step mesh: the terms take the step's context,
@@ -52,15 +53,20 @@ namespace ritr
     // warm-started from z: the stiffness and lagged friction stay frozen, so that the
     // objective is one function across trials. `near_solution`: z is predicted to first
     // order (r-ITR trial meshes), so an adaptive Hessian projection starts exact.
-    // `tolerance_scale` loosens the Newton tolerance (inexact inner solves of the outer one).
+    // `tolerance_scale` loosens the Newton tolerance and `iteration_cap` (0: none) stops Newton
+    // early without an error (inexact inner solves of the outer one: E at any admissible state
+    // bounds its minimum from above). Throws ConvergenceError if Newton fails otherwise.
     Report solve_on_mesh(const Eigen::VectorXd &u, Eigen::VectorXd &z, const Eigen::VectorXd &targets,
-                         bool near_solution = false, double tolerance_scale = 1.0);
+                         bool near_solution = false, double tolerance_scale = 1.0, unsigned int iteration_cap = 0);
 
     const std::vector<bool> &kinematic() const { return kinematic_; }
     const NewtonSolver      &newton() const { return newton_; }
     TermSum<dim>            &terms() { return terms_; }
 
   private:
+    // Whether every prescribed entry of z is at its target.
+    bool prescribed_reached(const Eigen::VectorXd &z, const Eigen::VectorXd &targets) const;
+
     TermSum<dim>             &terms_;
     const CellMaterials<dim> &materials_;
     std::vector<bool>         kinematic_;

@@ -3,7 +3,7 @@
 // eq. 6). Derivatives in x take a fast path: the density's derivatives in F (first Piola
 // stress, closed-form neo-Hookean Hessian) mapped by the constant P1 shape gradients; the
 // joint derivatives in (x, u) of the outer solve use second-order dual numbers on the same
-// kernel.
+// kernel, and its gradient in u alone is in closed form.
 #include <ritr/elasticity/cell_materials.h>
 #include <ritr/elasticity/density_hessian.h>
 #include <ritr/terms/energy_term.h>
@@ -24,6 +24,8 @@ namespace ritr
     void   add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const override;
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
+    // Closed form: the Eshelby stress Psi I - F^T P against the shape gradients.
+    void   add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const override;
 
   private:
     static constexpr int cell_dofs = MatrixAssembly<dim>::cell_dofs;

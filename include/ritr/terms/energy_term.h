@@ -102,6 +102,13 @@ namespace ritr
     // matrix the reduced Hessian eliminates: exact for cell terms, projected for contact.
     virtual void add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                            ReferenceDerivativeAssembly<dim> &d) const = 0;
+    // g_u alone, added to d.gu: all that a first-order outer solve needs. The default takes it
+    // from add_reference_derivatives (and leaves H_uu in d, which the caller discards); terms
+    // whose second derivatives cost much more than their gradient override it.
+    virtual void add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const
+    {
+      add_reference_derivatives(p, ReferenceBlock::exact, false, d);
+    }
     // Largest fraction of the step dz from z that keeps the state admissible (contact: CCD).
     virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
     {

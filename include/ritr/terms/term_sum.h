@@ -83,6 +83,10 @@ namespace ritr
     };
     ReferenceDerivatives reference_derivatives(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
                                                ReferenceBlock block, bool coupling) const;
+    // dR/du at fixed z alone (first-order outer solves); `without_mesh_terms` leaves out
+    // the terms of the reference mesh alone.
+    Eigen::VectorXd reference_gradient(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
+                                       bool without_mesh_terms = false) const;
 
     const SimplexMesh<dim> &mesh() const { return mesh_; }
 

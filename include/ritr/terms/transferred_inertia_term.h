@@ -32,9 +32,13 @@ namespace ritr
     bool   convex_in_state() const override { return true; }  // a mass matrix; the transfer is linear in x
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
+    // The transfer's first derivatives only (first-order dual numbers on exact overlaps).
+    void   add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const override;
 
     // Time spent in the transfer (locating, integrating) since construction.
     double transfer_seconds() const { return seconds_; }
+    // The transfer from the step's start mesh to the last reference set (dynamics only).
+    const transfer::TransferOperator<dim> &transfer() const { return transfer_; }
 
   private:
     bool adds_projected_predictor() const { return form_ == InertiaForm::uncorrected; }

@@ -145,11 +145,15 @@ namespace ritr::transfer
     void cell_terms(unsigned int c, const Eigen::VectorXd *x,
                     const std::vector<OldField> &field, CellTerms &terms) const;
     // Exact integration (exact_transfer.cc): value (x given) and grad_x in plain arithmetic;
-    // every entry of CellTerms with dual numbers.
+    // with grad_u alone first-order dual numbers, else every entry of CellTerms with
+    // second-order ones.
     void exact_cell_values(unsigned int c, const Eigen::VectorXd *x, const std::vector<OldField> &field,
                            CellTerms &terms) const;
     void exact_cell_derivatives(unsigned int c, const Eigen::VectorXd &x, const std::vector<OldField> &field,
                                 CellTerms &terms) const;
+    // value, grad_x and grad_u only, with first-order dual numbers (first-order outer solves).
+    void exact_cell_gradient(unsigned int c, const Eigen::VectorXd &x, const std::vector<OldField> &field,
+                             CellTerms &terms) const;
     SparseMatrix exact_transfer_matrix() const;
     void         find_overlaps();  // overlaps_ of the current candidate
     void check_ready(const char *what) const;
