@@ -84,6 +84,24 @@ namespace ritr
       }
   }
 
+  template <int dim>
+  void BodyForceTerm<dim>::add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const
+  {
+    if (!any_)
+      return;
+    const auto &mesh = materials_.mesh();
+    for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+      {
+        const auto &cell = mesh.cells[c];
+        const auto  f    = nodal_force_density(c);
+        double      q    = 0;
+        for (int a = 0; a <= dim; ++a)
+          for (int k = 0; k < dim; ++k)
+            q -= p.z[cell[a] * dim + k] * f[k];
+        add_measure_weighted_gradient<dim>(cell, q, cell_measure_gradient<dim>(p.u, cell), d.gu);
+      }
+  }
+
   template class BodyForceTerm<1>;
   template class BodyForceTerm<2>;
   template class BodyForceTerm<3>;

@@ -147,6 +147,19 @@ namespace ritr
       }
   }
 
+  template <int dim>
+  void InertiaTerm<dim>::add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const
+  {
+    if (!active_)
+      return;
+    const auto &mesh        = materials_.mesh();
+    const bool  uncorrected = form_ == InertiaForm::uncorrected && predictor_kind_ == Predictor::nodal;
+    for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+      add_measure_weighted_gradient<dim>(
+        mesh.cells[c], materials_.of_cell(c).density * kinetic_density<dim>(p.z, predictor_, mesh.cells[c], uncorrected),
+        cell_measure_gradient<dim>(p.u, mesh.cells[c]), d.gu);
+  }
+
   template class InertiaTerm<1>;
   template class InertiaTerm<2>;
   template class InertiaTerm<3>;

@@ -551,7 +551,10 @@ namespace ritr::transfer
     if (solver.info() != Eigen::Success)
       throw std::runtime_error("TransferOperator::project: candidate mass matrix is singular "
                                "(degenerate cells or nodes in no cell)");
-    const Eigen::MatrixXd rhs = transfer_matrix() * Y;
+    // A vector field's (A (x) I) y is db/dx, computed cell by cell without assembling A.
+    const Eigen::MatrixXd rhs = n_components == dim ? Eigen::MatrixXd(RowMajor(Eigen::Map<const RowMajor>(
+                                                        gradient_x(y).data(), n_nodes_, n_components))) :
+                                                      Eigen::MatrixXd(transfer_matrix() * Y);
     const RowMajor        Z   = solver.solve(rhs);
     return Eigen::Map<const Eigen::VectorXd>(Z.data(), Z.size());
   }

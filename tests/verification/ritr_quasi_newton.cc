@@ -99,12 +99,9 @@ namespace
     // The mesh moves: the comparison is not of two unmoved meshes.
     EXPECT_GT(moved, 1e-3);
     EXPECT_NEAR(quasi_newton.objective, reduced.objective, 1e-10 * std::abs(reduced.objective));
-    // Where R's minimum is flat the two meshes may differ by more than epsilon r along the
-    // valley (the square: R within 3e-12, nodes 3e-3 apart); on the rod it is a point.
-    if (dim == 1)
-      {
-        EXPECT_LT(apart, 1e-4 * moved);
-      }
+    // R is flat along the square's valley of minima, where the meshes may differ by more than
+    // epsilon r (R the same to 12 digits, nodes 6e-4 apart); the rod's minimum is a point.
+    EXPECT_LT(apart, (dim == 1 ? 1e-4 : 1e-2) * moved);
   }
 } // namespace
 

@@ -3,6 +3,7 @@
 // derivatives (variables: node a, component k at a * dim + k): a cell's signed length, area
 // or volume -- the weight of every cell term and the argument of the reference measure
 // barrier -- and the unsigned measure of a boundary facet, which weighs the contact terms.
+#include <ritr/common/first_order_dual.h>
 #include <ritr/common/second_order_dual.h>
 #include <ritr/common/small_matrix.h>
 
@@ -18,6 +19,19 @@ namespace ritr
                                                            const std::array<unsigned int, dim + 1> &cell)
   {
     using Dual = SecondOrderDual<dim *(dim + 1)>;
+    std::array<std::array<Dual, dim>, dim + 1> nodes;
+    for (int a = 0; a <= dim; ++a)
+      for (int k = 0; k < dim; ++k)
+        nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
+    return simplex_measure<dim, Dual>(nodes);
+  }
+
+  // The same with its gradient alone (first-order outer solves).
+  template <int dim>
+  FirstOrderDual<dim *(dim + 1)> cell_measure_gradient(const Eigen::VectorXd                   &u,
+                                                       const std::array<unsigned int, dim + 1> &cell)
+  {
+    using Dual = FirstOrderDual<dim *(dim + 1)>;
     std::array<std::array<Dual, dim>, dim + 1> nodes;
     for (int a = 0; a <= dim; ++a)
       for (int k = 0; k < dim; ++k)

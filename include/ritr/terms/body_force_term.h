@@ -21,6 +21,7 @@ namespace ritr
     bool   convex_in_state() const override { return true; }
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
+    void   add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const override;
 
   private:
     // -w rho / (d + 1) g: the force on each node of a cell per unit cell measure.

@@ -34,6 +34,7 @@ namespace ritr
     bool   convex_in_state() const override { return true; }  // the mass matrix is positive definite
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
+    void   add_reference_gradient(const TermPoint &p, ReferenceDerivativeAssembly<dim> &d) const override;
 
   private:
     const CellMaterials<dim> &materials_;

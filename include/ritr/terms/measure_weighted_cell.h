@@ -3,7 +3,8 @@
 // degree at most two in the cell's node positions (inertia, body forces): with m = |T| and
 // its derivatives (common/simplex_measure.h),
 //   f_x = m q_x,  f_u = q m_u,  f_xx = m q_xx,  f_xu = q_x m_u^T,  f_uu = q m_uu,
-// added for cell c into the outer solve's assembly. Not thread-safe (gradients scatter).
+// added for cell c into the outer solve's assembly; or f_u alone into g_u. Not thread-safe
+// (gradients scatter).
 #include <ritr/common/simplex_measure.h>
 #include <ritr/terms/energy_term.h>
 
@@ -35,5 +36,13 @@ namespace ritr
         if (coupling)
           d.gx[dof] += m * q_x[i];
       }
+  }
+
+  template <int dim>
+  void add_measure_weighted_gradient(const std::array<unsigned int, dim + 1> &cell, const double q,
+                                     const FirstOrderDual<dim *(dim + 1)> &measure, Eigen::VectorXd &gu)
+  {
+    for (int i = 0; i < dim * (dim + 1); ++i)
+      gu[cell[i / dim] * dim + i % dim] += q * measure.grad[i];
   }
 } // namespace ritr
