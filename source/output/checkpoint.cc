@@ -174,11 +174,16 @@ namespace ritr
     write_file_atomically(path, [&](std::ostream &out) { out.write(file.bytes.data(), file.bytes.size()); });
   }
 
+  InputError no_checkpoint_error(const std::string &path)
+  {
+    return InputError(path + ": no checkpoint to resume from (run the scene without --resume to start it)");
+  }
+
   Checkpoint read_checkpoint(const std::string &path)
   {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec))
-      throw InputError(path + ": no checkpoint to resume from (run the scene without --resume to start it)");
+      throw no_checkpoint_error(path);
     std::ifstream in(path, std::ios::binary);
     if (!in || !std::filesystem::is_regular_file(path, ec))
       throw InputError(path + ": cannot be read");

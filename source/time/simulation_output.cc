@@ -1,9 +1,11 @@
 // The outputs of a run (the output contract of the design notes): VTU/PVD files, log.csv,
 // summary.json, and the run's ownership of its output directory.
 #include <ritr/common/atomic_file.h>
+#include <ritr/common/input_error.h>
 #include <ritr/common/wall_clock.h>
 #include <ritr/elasticity/stress.h>
 #include <ritr/metrics/mesh_metrics.h>
+#include <ritr/output/checkpoint.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/output/vtk_files.h>
 #include <ritr/terms/contact_barrier_term.h>
@@ -262,11 +264,40 @@ namespace ritr
   }
 
   template <int dim>
+  void Simulation<dim>::claim_output_directory(const bool resuming)
+  {
+    if (directory_lock_)
+      return;
+    namespace fs             = std::filesystem;
+    const fs::path directory = scene_.output_directory;
+    const auto     refuse    = [&](const std::string &what) {
+      throw InputError(scene_.where("output directory") + ": '" + shortened(directory.string()) + "' " + what);
+    };
+    std::error_code ec;
+    if (resuming)
+      {
+        // A resume creates nothing: without the directory there is no checkpoint.
+        if (!fs::is_directory(directory, ec))
+          throw no_checkpoint_error((directory / "checkpoint.bin").string());
+      }
+    else if (fs::create_directories(directory, ec); ec)
+      refuse("cannot be created: " + ec.message());
+    try
+      {
+        directory_lock_ = std::make_unique<OutputDirectoryLock>(directory);
+      }
+    catch (const std::runtime_error &e)
+      {
+        refuse(e.what());
+      }
+  }
+
+  template <int dim>
   void Simulation<dim>::run()
   {
     // From here on the directory belongs to this run (the scene has been validated): its
     // summary says "complete": false until the end, and nothing of a previous run stays.
-    std::filesystem::create_directories(scene_.output_directory);
+    claim_output_directory(false);
     create_outputs();
     write_summary(0, false);
     remove_previous_outputs(outputs_->directory);

@@ -97,7 +97,9 @@ namespace ritr
   template <int dim>
   bool Simulation<dim>::resume()
   {
-    // Everything is read and checked before the first file is written.
+    // The directory is this process's before anything in it is read; everything is read and
+    // checked before the first file is written.
+    claim_output_directory(true);
     const fs::path    directory = scene_.output_directory;
     const std::string file      = (directory / "checkpoint.bin").string();
     const Checkpoint  c         = read_checkpoint(file);

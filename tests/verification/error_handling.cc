@@ -143,6 +143,49 @@ TEST(ErrorHandling, FoldedElements)
   expect_input_error("folded", "", "inverted (folded) elements", "set shape = rectangle",
                      "set shape = file\n  set file = folded.msh");
 }
+// Output directories that pass for creatable but cannot be made: refused before anything is
+// printed, the path and its parent untouched.
+TEST(ErrorHandling, OutputDirectoryThatCannotBeCreated)
+{
+  const std::string folder = "output/errors/uncreatable";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  std::filesystem::create_symlink("missing/target", folder + "/dangling");
+  for (const std::string &directory : {std::string("/proc/ritr-output"), folder + "/dangling", folder + "/dangling/below"})
+    {
+      const std::string scene = folder + "/scene.prm";
+      write_file(scene, replaced(small_scene, "OUTPUT", directory));
+      const auto      before = snapshot(folder);
+      const RunResult r      = run_ritr(scene, "2>&1 >" + folder + ".stdout");
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_EQ(read_file(folder + ".stdout"), "") << directory;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_EQ(r.output.rfind("ritr: error: " + scene + ":4: output directory: '" + directory + "' cannot be created", 0), 0u)
+        << r.output;
+      EXPECT_TRUE(snapshot(folder) == before) << directory;
+      EXPECT_FALSE(std::filesystem::exists(directory)) << directory;
+    }
+}
+
+// A command line that is not one of the usages: one line saying what is wrong and how to call
+// ritr, exit code 2.
+TEST(ErrorHandling, CommandLineMisuse)
+{
+  for (const std::string arguments : {"", "a.prm b.prm", "--frobnicate", "a.prm --frobnicate", "--help --resume",
+                                      "--resume", "--print-parameters a.prm"})
+    {
+      const RunResult r = run_ritr(arguments);
+      EXPECT_EQ(r.exit_code, 2) << arguments << ": " << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << arguments << ": " << r.output;
+      EXPECT_EQ(r.output.rfind("ritr: error: ", 0), 0u) << r.output;
+      EXPECT_NE(r.output.find("(usage: ritr SCENE.prm [--resume] | ritr --print-parameters | ritr --help)\n"),
+                std::string::npos)
+        << r.output;
+    }
+  EXPECT_NE(run_ritr("a.prm --frobnicate").output.find("unknown option '--frobnicate'"), std::string::npos);
+  EXPECT_EQ(run_ritr("--help").exit_code, 0);
+}
+
 TEST(ErrorHandling, AdaptivityWithoutPhysicalAdmissibilityNeedsNoContact)
 {
   expect_input_error("adaptivity_joint_contact",

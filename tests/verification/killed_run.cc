@@ -11,9 +11,6 @@
 #include <regex>
 #include <thread>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include "run_ritr.h"
 
 using namespace ritr::test_support;
@@ -31,22 +28,6 @@ namespace
   bool ends_with(const std::string &s, const std::string &end)
   {
     return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
-  }
-
-  // Starts ritr on the scene with its output discarded; returns its process id.
-  pid_t start_ritr()
-  {
-    const std::string binary = ritr_binary();  // before fork: the child only calls exec
-    const pid_t       pid    = fork();
-    if (pid == 0)
-      {
-        const int null = open("/dev/null", O_WRONLY);
-        dup2(null, 1);
-        dup2(null, 2);
-        execl(binary.c_str(), "ritr", scene.c_str(), static_cast<char *>(nullptr));
-        _exit(127);
-      }
-    return pid;
   }
 
   // The files of a snapshot without temporaries (a temporary may be torn; the next run
@@ -138,7 +119,7 @@ TEST(KilledRun, LeavesWellFormedFilesAndNoFalseClaimOfCompletion)
       for (const auto &[path, text] : old_run)
         write_file(path, text);
       const double at  = moment(random);
-      const pid_t  pid = start_ritr();
+      const pid_t  pid = start_ritr({scene});
       std::this_thread::sleep_for(std::chrono::duration<double>(at));
       kill(pid, SIGKILL);
       waitpid(pid, nullptr, 0);

@@ -11,9 +11,6 @@
 #include <regex>
 #include <thread>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include "run_ritr.h"
 
 using namespace ritr::test_support;
@@ -65,21 +62,9 @@ namespace
   bool run_and_kill(const std::string &scene, const std::string &output, const unsigned int rows,
                     const bool resume)
   {
-    const std::string binary = ritr_binary();  // before fork: the child only calls exec
-    const pid_t       pid    = fork();
-    if (pid == 0)
-      {
-        const int null = open("/dev/null", O_WRONLY);
-        dup2(null, 1);
-        dup2(null, 2);
-        if (resume)
-          execl(binary.c_str(), "ritr", scene.c_str(), "--resume", static_cast<char *>(nullptr));
-        else
-          execl(binary.c_str(), "ritr", scene.c_str(), static_cast<char *>(nullptr));
-        _exit(127);
-      }
-    int  status = 0;
-    bool ended  = false;
+    const pid_t pid    = resume ? start_ritr({scene, "--resume"}) : start_ritr({scene});
+    int         status = 0;
+    bool        ended  = false;
     while (!(ended = waitpid(pid, &status, WNOHANG) == pid) &&
            (log_rows(output) < rows || !fs::exists(output + "/checkpoint.bin")))
       std::this_thread::sleep_for(std::chrono::milliseconds(2));

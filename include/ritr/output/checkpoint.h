@@ -3,6 +3,7 @@
 // so that `ritr SCENE.prm --resume` continues a killed run from its last frame. Doubles are
 // stored raw, so a resumed run repeats the uninterrupted one bit for bit; a checksum catches
 // torn or damaged files, and the file is written atomically like every other output.
+#include <ritr/common/input_error.h>
 #include <ritr/time/step_report.h>
 
 #include <Eigen/Core>
@@ -33,6 +34,9 @@ namespace ritr
 
   // Writes `checkpoint` to `path` atomically (temporary name, then rename).
   void write_checkpoint(const std::string &path, const Checkpoint &checkpoint);
+
+  // The refusal to resume when there is no checkpoint at `path`.
+  InputError no_checkpoint_error(const std::string &path);
 
   // Reads a checkpoint; throws InputError naming the file and what is wrong with it (missing,
   // not a checkpoint, another format version, truncated, corrupted).
