@@ -107,14 +107,16 @@ namespace ritr
 
   void remove_previous_outputs(const fs::path &directory)
   {
-    std::vector<fs::path> collections, others;
+    std::vector<fs::path> checkpoints, collections, others;
     for (const auto &entry : fs::directory_iterator(directory))
       {
         const std::string name = entry.path().filename().string();
-        if (is_run_output(name) && name != "summary.json")
-          (ends_with(name, ".pvd") ? collections : others).push_back(entry.path());
+        if (!is_run_output(name) || name == "summary.json")
+          continue;
+        (name == "checkpoint.bin" ? checkpoints : ends_with(name, ".pvd") ? collections : others)
+          .push_back(entry.path());
       }
-    for (const auto *files : {&collections, &others})
+    for (const auto *files : {&checkpoints, &collections, &others})
       for (const auto &file : *files)
         fs::remove(file);
   }

@@ -318,6 +318,13 @@ namespace ritr
         while (step_ < n_steps)
           {
             const StepReport r = advance();
+            // The final energy term by term while the terms hold the last step's context; the
+            // last checkpoint keeps it for a run resumed after it.
+            if (step_ == n_steps)
+              {
+                const Eigen::VectorXd z = state();
+                last_step_terms_        = terms_.values(z, terms_.candidates_at(z));
+              }
             append_log_row(r);
             flush_logs();
             // The checkpoint comes last: every file it accounts for is in place before it.
@@ -338,13 +345,6 @@ namespace ritr
         flush_logs();  // newton.csv then shows the iterations of the failed step
         write_summary(wall_seconds(), false, e.what());
         throw;
-      }
-    // The final energy term by term, once, while the terms still hold the last step's
-    // context (they hold none when this process ran no step).
-    if (step_ > first_step)
-      {
-        const Eigen::VectorXd z = state();
-        last_step_terms_        = terms_.values(z, terms_.candidates_at(z));
       }
     write_summary(wall_seconds(), true);
   }

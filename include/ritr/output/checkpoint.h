@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ritr
@@ -27,6 +28,9 @@ namespace ritr
     // One report per step done: log.csv is rewritten from them, summary.json adds them up.
     std::vector<StepReport>  history;
     std::vector<std::string> invariant_violations;
+    // The last step's energy term by term (summary.json's final_energy_terms), once the run
+    // has made its last step; empty before.
+    std::vector<std::pair<std::string, double>> final_energy_terms;
     // Totals of summary.json that no step report holds, over the run so far.
     double        wall_seconds = 0, output_seconds = 0, linear_solve_seconds = 0;
     std::uint64_t symbolic_factorizations = 0, numeric_factorizations = 0;
@@ -39,7 +43,8 @@ namespace ritr
   InputError no_checkpoint_error(const std::string &path);
 
   // Reads a checkpoint; throws InputError naming the file and what is wrong with it (missing,
-  // not a checkpoint, another format version, truncated, corrupted).
+  // not a checkpoint, another format version, truncated, corrupted, or contents that no run
+  // writes: a state or time that is not finite, step reports out of order).
   Checkpoint read_checkpoint(const std::string &path);
 
   // 64-bit FNV-1a of `bytes` bytes, continuing from `hash` (fingerprints, not security).

@@ -68,6 +68,8 @@ namespace ritr
     void flush_logs() const;
     // checkpoint.bin for the state after step_ (simulation_resume.cc).
     void write_checkpoint() const;
+    // The per-frame files of the frames up to `last_step`, as named in the output directory.
+    std::vector<std::string> frame_files(unsigned int last_step) const;
     // Identifies the scene a checkpoint belongs to: its parameters and its initial mesh.
     std::uint64_t scene_fingerprint() const;
     // Wall time of the run so far, over every process that ran a part of it.
