@@ -1,11 +1,9 @@
 #include <ritr/common/input_error.h>
 #include <ritr/problem/obstacle_reader.h>
-#include <ritr/metrics/mesh_metrics.h>
 #include <ritr/problem/problem.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 namespace ritr
@@ -257,32 +255,6 @@ namespace ritr
   {
     if (scene.contact.enabled)
       collisions = std::make_unique<CollisionMesh<dim>>(mesh, obstacles, scene.contact.dhat, scene.contact.self_contact);
-  }
-
-  template <int dim>
-  void Problem<dim>::check_initial_state() const
-  {
-    const std::string &file = scene.parameter_file;
-    double             smallest = std::numeric_limits<double>::max(), largest = 0;
-    for (const auto &cell : mesh.cells)
-      {
-        const double m = std::abs(simplex_measure<dim, double>(cell_nodes<dim>(initial_reference, cell)));
-        smallest       = std::min(smallest, m);
-        largest        = std::max(largest, m);
-      }
-    if (!(smallest > 1e-12 * largest))
-      throw InputError(file + ": Body: the mesh has degenerate (zero-measure) elements");
-    if (!(min_deformed_jacobian(mesh, initial_positions, initial_reference) > 0))
-      throw InputError(file + ": Dirichlet: the initial prescribed displacement inverts elements");
-    if (collisions)
-      {
-        Eigen::VectorXd z(initial_positions.size() + initial_obstacle_positions.size());
-        z << initial_positions, initial_obstacle_positions;
-        // Distances at round-off level are contact too: the barrier could not push them apart.
-        const double d = collisions->minimum_distance(z);
-        if (!(d > 1e-12 * collisions->bbox_diagonal(z)) || collisions->has_intersections(z))
-          throw InputError(file + ": the initial configuration intersects (bodies or obstacles overlap or touch)");
-      }
   }
 
   template <int dim>

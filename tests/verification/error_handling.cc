@@ -244,6 +244,19 @@ namespace
   const std::string triangle_nodes = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n";
   const std::string triangle_cells = "$EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n";
 
+  // A second body or obstacle of the small scene (whose strip spans [0, 1] x [0.01, 0.21]).
+  std::string second_body(const std::string &lines)
+  {
+    return "subsection Body 1\n set enabled = true\n" + lines + "\nend\n";
+  }
+  std::string second_obstacle(const std::string &lines) { return "subsection Obstacle 1\n" + lines + "\nend\n"; }
+
+  // A 3D scene: a ball of radius 0.5 at (0, 0.8, 0), without obstacles.
+  const std::string ball_scene = "set dimension = 3\nset time step = 0.01\nset end time = 0.02\n"
+                                 "set output directory = OUTPUT\n"
+                                 "subsection Body 0\n set shape = ball\n set center = 0, 0.8, 0\n set radius = 0.5\n"
+                                 " set shape refinements = 0\nend\n";
+
   std::vector<BadInput> bad_inputs()
   {
     const std::string file_body = "set shape = rectangle";
@@ -336,6 +349,28 @@ namespace
         .with("folded.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n"
                             "4 0 1 0\n5 0.9 0.5 0\n$EndNodes\n$Elements\n3\n1 2 2 0 1 1 2 3\n2 2 2 0 1 1 3 4\n"
                             "3 2 2 0 1 1 3 5\n$EndElements\n"),
+      // The initial state is free of intersections: nothing inside a body or a closed obstacle,
+      // found by inside tests since no boundary crosses; each named.
+      appended("obstacle_inside_body", "the initial configuration intersects: Obstacle 1 lies inside Body 0",
+               second_obstacle(" set type = box\n set point = 0.5, 0.1\n set size = 0.05, 0.05")),
+      appended("body_inside_body", "the initial configuration intersects: Body 1 lies inside Body 0",
+               second_body(" set lower = 0.4, 0.05\n set upper = 0.6, 0.15")),
+      appended("spikes_inside_body", "the initial configuration intersects: Obstacle 1 lies inside Body 0",
+               second_obstacle(" set type = spikes\n set point = 0.5, 0.05\n set size = 0.2\n set count = 3\n"
+                               " set spike height = 0.05")),
+      appended("body_inside_closed_obstacle", "the initial configuration intersects: Body 1 lies inside Obstacle 1",
+               second_obstacle(" set type = box\n set point = 3, 0.5\n set size = 1, 1") +
+                 second_body(" set lower = 2.9, 0.4\n set upper = 3.1, 0.6")),
+      whole("obstacle_inside_ball", "the initial configuration intersects: Obstacle 0 lies inside Body 0",
+            ball_scene + "subsection Obstacle 0\n set type = box\n set point = 0, 0.8, 0\n set size = 0.1, 0.1, 0.1\nend\n"),
+      whole("ball_inside_ball", "the initial configuration intersects: Body 1 lies inside Body 0",
+            ball_scene + "subsection Body 1\n set enabled = true\n set shape = ball\n set center = 0.05, 0.8, 0\n"
+                         " set radius = 0.1\n set shape refinements = 0\nend\n"),
+      edited("crossing_named", "the initial configuration intersects: Body 0 and Obstacle 0 overlap or touch",
+             "set translation = 0, 0.01", "set translation = 0, -0.05"),
+      // Coordinates a double cannot compute with.
+      edited("coordinates_near_1e300", "Body 0: has a coordinate of 1e+300; coordinates must stay below",
+             "set translation = 0, 0.01", "set translation = 1e300, 0.01"),
       // deal.II skips the pattern of a value with '{' (its parameter loops).
       appended("brace_in_selection", "mode: '{' is not allowed", "set mode = {static|dynamic}\n"),
       appended("brace_in_integer", "Body 0/material id: '{'", body(" set material id = {")),

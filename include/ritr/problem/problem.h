@@ -67,7 +67,14 @@ namespace ritr
     void build_dirichlet_conditions();
     void build_contact();
     void build_terms();
-    void check_initial_state() const;
+    // initial_state.cc: the initial state's checks, each naming the body or obstacle at fault.
+    void        check_initial_state() const;
+    void        check_coordinates() const;
+    void        check_element_measures() const;
+    void        check_separation(const Eigen::VectorXd &z) const;      // crossing or touching
+    void        check_nothing_inside(const Eigen::VectorXd &z) const;  // inside a body or closed obstacle
+    // The .prm subsection ("Body 1", "Obstacle 0") of a vertex of the state z.
+    std::string name_of_state_vertex(int vertex) const;
 
     std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition
     std::vector<Expression<dim>>                       dirichlet_displacements_;
