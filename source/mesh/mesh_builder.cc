@@ -1,5 +1,5 @@
 #include <ritr/common/small_matrix.h>
-#include <ritr/mesh/gmsh_nodes.h>
+#include <ritr/mesh/gmsh_checks.h>
 #include <ritr/mesh/mesh_builder.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -41,6 +41,7 @@ namespace ritr
           if (!in)
             throw std::runtime_error("cannot open mesh file '" + body.file + "'");
           check_unique_node_tags(body.file);
+          check_unique_elements(body.file, dim);
           GridIn<dim> grid_in(tria);
           try
             {
@@ -183,10 +184,23 @@ namespace ritr
       return mesh;
     }
 
-    // Whether two orderings of the same facet's nodes are even permutations of each other.
+    // A facet as one cell sees it: its nodes in outward order, and in 1D, where a facet is a
+    // single node, which end of the cell it is (+1 the upper, -1 the lower).
     template <int dim>
-    bool same_orientation(const std::array<unsigned int, dim> &a, const std::array<unsigned int, dim> &b)
+    struct OrientedFacet
     {
+      std::array<unsigned int, dim> nodes;
+      int                           end = 0;
+    };
+
+    // Whether two cells see the same facet with the same orientation: then they lie on the
+    // same side of it.
+    template <int dim>
+    bool same_orientation(const OrientedFacet<dim> &first, const OrientedFacet<dim> &second)
+    {
+      if constexpr (dim == 1)
+        return first.end == second.end;
+      const auto &a = first.nodes, &b = second.nodes;
       // Segments: only the identity. Triangles: the even permutations are the rotations.
       for (int shift = 0; shift < (dim == 3 ? 3 : 1); ++shift)
         {
@@ -242,25 +256,28 @@ namespace ritr
         std::swap(cell[0], cell[1]);
 
     // A facet is on the boundary when exactly one cell has it.
-    std::map<std::array<unsigned int, dim>, std::pair<int, std::array<unsigned int, dim>>> facets;
+    std::map<std::array<unsigned int, dim>, std::pair<int, OrientedFacet<dim>>> facets;
     for (const auto &cell : mesh.cells)
       for (int skip = 0; skip <= dim; ++skip)
         {
           // Facet opposite node `skip`, outward-oriented: the boundary of a positive simplex
-          // is sum_i (-1)^i [nodes without i], so odd facets are reversed.
-          std::array<unsigned int, dim> facet;
+          // is sum_i (-1)^i [nodes without i], so odd facets are reversed (in 1D: node 1 is
+          // the upper end).
+          OrientedFacet<dim> facet;
           for (int a = 0, j = 0; a <= dim; ++a)
             if (a != skip)
-              facet[j++] = cell[a];
+              facet.nodes[j++] = cell[a];
           if (skip % 2 == 1 && dim > 1)
-            std::swap(facet[0], facet[1]);
-          auto key = facet;
+            std::swap(facet.nodes[0], facet.nodes[1]);
+          facet.end = skip == 0 ? 1 : -1;
+          auto key  = facet.nodes;
           std::sort(key.begin(), key.end());
           auto &entry = facets[key];
           // Two positively oriented cells on opposite sides of a facet see it with opposite
           // orientations; the same orientation twice, or a third cell, means that cells
-          // overlap (a folded or inverted element in the input).
-          if (dim > 1 && (entry.first >= 2 || (entry.first == 1 && same_orientation<dim>(entry.second, facet))))
+          // overlap (a folded or inverted element in the input; in 1D a rod folded back on
+          // itself or branching).
+          if (entry.first >= 2 || (entry.first == 1 && same_orientation<dim>(entry.second, facet)))
             throw std::runtime_error("the mesh has inverted (folded) elements");
           entry.first += 1;
           entry.second = facet;
@@ -268,7 +285,7 @@ namespace ritr
     mesh.boundary_facets.clear();
     for (const auto &[key, entry] : facets)
       if (entry.first == 1)
-        mesh.boundary_facets.push_back(entry.second);
+        mesh.boundary_facets.push_back(entry.second.nodes);
     mesh.boundary_ids.assign(mesh.boundary_facets.size(), 0);
 
     // Bodies are the connected components of the cell graph (union-find over nodes).

@@ -1,4 +1,5 @@
 #include <ritr/common/input_error.h>
+#include <ritr/contact/obj_file.h>
 #include <ritr/problem/obstacle_reader.h>
 #include <ritr/problem/problem.h>
 

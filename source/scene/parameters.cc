@@ -183,6 +183,34 @@ namespace ritr
       return slash == std::string::npos ? path : prm_file.substr(0, slash + 1) + path;
     }
 
+    // Whether an expression is the constant zero ("0", "0.0", " -0 ").
+    bool is_constant_zero(const std::string &expression)
+    {
+      char        *end   = nullptr;
+      const double value = std::strtod(expression.c_str(), &end);
+      return end != expression.c_str() && std::string(end).find_first_not_of(" \t") == std::string::npos && value == 0;
+    }
+
+    // Refuses (through `fail(entry, what)`) an obstacle's directions that define nothing: a
+    // plane's zero normal (it would collapse to a point) and, in 3D, a zero rotation axis of
+    // an obstacle that rotates (the rotation would shrink it).
+    template <typename Fail>
+    void check_directions(const ObstacleScene &obstacle, const int dim, const Fail &fail)
+    {
+      const auto length = [&](const std::vector<double> &v, const int n) {
+        double squares = 0;
+        for (int k = 0; k < n; ++k)
+          squares += v[k] * v[k];
+        return std::sqrt(squares);
+      };
+      if (obstacle.type == "plane" && !(length(obstacle.normal, dim) > 0 && std::isfinite(length(obstacle.normal, dim))))
+        fail("normal", "must be a nonzero direction");
+      if (dim == 3 && !is_constant_zero(obstacle.rotation_angle) &&
+          !(length(obstacle.rotation_axis, 3) > 0 && std::isfinite(length(obstacle.rotation_axis, 3))))
+        fail("rotation axis", "must be a nonzero direction when the obstacle rotates (rotation angle '" +
+                                shortened(obstacle.rotation_angle) + "')");
+    }
+
     // The scene of a parsed parameter file, with every check that needs more than a pattern.
     Scene validated_scene(ParameterHandler &prm, const SceneFile &scene_file, const std::string &file)
     {
@@ -313,6 +341,9 @@ namespace ritr
                 fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
               check_expression(dim, ob.translation, dim, s.where(name + "/translation"));
               check_expression(dim, ob.rotation_angle, 1, s.where(name + "/rotation angle"));
+              check_directions(ob, dim, [&](const std::string &entry, const std::string &what) {
+                fail(name + "/" + entry, what);
+              });
               s.obstacles.push_back(ob);
             }
           prm.leave_subsection();

@@ -251,6 +251,35 @@ namespace
   }
   std::string second_obstacle(const std::string &lines) { return "subsection Obstacle 1\n" + lines + "\nend\n"; }
 
+  // A gmsh 2.2 file of `nodes` ("tag x y z" lines) and `elements` ("tag type 2 0 1 nodes..." lines).
+  std::string gmsh(const std::vector<std::string> &nodes, const std::vector<std::string> &elements)
+  {
+    std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + std::to_string(nodes.size()) + "\n";
+    for (const auto &n : nodes)
+      text += n + "\n";
+    text += "$EndNodes\n$Elements\n" + std::to_string(elements.size()) + "\n";
+    for (const auto &e : elements)
+      text += e + "\n";
+    return text + "$EndElements\n";
+  }
+
+  // A rod read from rod.msh above a wall at x = -1.
+  const std::string rod_scene = "set dimension = 1\nset time step = 0.01\nset end time = 0.02\n"
+                                "set output directory = OUTPUT\n"
+                                "subsection Body 0\n set shape = file\n set file = rod.msh\nend\n"
+                                "subsection Obstacle 0\n set type = plane\n set point = -1\n set normal = 1\nend\n";
+
+  // A 3D block above the obstacle surface shape.obj.
+  const std::string obj_scene = "set dimension = 3\nset time step = 0.01\nset end time = 0.02\n"
+                                "set output directory = OUTPUT\n"
+                                "subsection Body 0\n set shape = box\n set upper = 1, 0.2, 1\n"
+                                " set translation = 0, 0.5, 0\nend\n"
+                                "subsection Obstacle 0\n set type = file\n set file = shape.obj\nend\n";
+  // The 2D strip above the obstacle polyline shape.obj.
+  const std::string obj_scene_2d =
+    replaced(small_scene, "set type = plane\n  set point = 0, 0", "set type = file\n  set file = shape.obj");
+  const std::string a_triangle = "v 0 0 0\nv 1 0 0\nv 0 0 1\n";
+
   // A 3D scene: a ball of radius 0.5 at (0, 0.8, 0), without obstacles.
   const std::string ball_scene = "set dimension = 3\nset time step = 0.01\nset end time = 0.02\n"
                                  "set output directory = OUTPUT\n"
@@ -368,6 +397,51 @@ namespace
                          " set radius = 0.1\n set shape refinements = 0\nend\n"),
       edited("crossing_named", "the initial configuration intersects: Body 0 and Obstacle 0 overlap or touch",
              "set translation = 0, 0.01", "set translation = 0, -0.05"),
+      // 1D meshes get the mesh checks of 2D and 3D.
+      whole("rod_duplicated_segment", "rod.msh' has a duplicated segment: element 3 repeats the nodes of element 2",
+            rod_scene)
+        .with("rod.msh", gmsh({"1 0 0 0", "2 0.5 0 0", "3 1 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 3", "3 1 2 0 1 3 2"})),
+      whole("rod_folded", "Body 0: the mesh has inverted (folded) elements", rod_scene)
+        .with("rod.msh", gmsh({"1 0 0 0", "2 1 0 0", "3 0.5 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 3"})),
+      edited("triangle_duplicated", "has a duplicated triangle: element 3 repeats the nodes of element 1", file_body,
+             "set shape = file\n set file = twice.msh")
+        .with("twice.msh", gmsh({"1 0 0 0", "2 1 0 0", "3 1 1 0", "4 0 1 0"},
+                                {"1 2 2 0 1 1 2 3", "2 2 2 0 1 1 3 4", "3 2 2 0 1 3 1 2"})),
+      whole("tetrahedron_duplicated", "has a duplicated tetrahedron: element 2 repeats the nodes of element 1",
+            replaced(ball_scene, " set shape = ball", " set shape = file\n set file = twice.msh"))
+        .with("twice.msh", gmsh({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0 0 1"}, {"1 4 2 0 1 1 2 3 4", "2 4 2 0 1 4 3 2 1"})),
+      // .obj obstacles: every coordinate a finite number, every index a vertex, every element
+      // with a length or area; the file and line named.
+      whole("obj_missing_coordinate", "shape.obj:2: a vertex needs 3 coordinates, this one has 2", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0\nv 0 0 1\nf 1 2 3\n"),
+      whole("obj_nan_coordinate", "shape.obj:2: vertex coordinate 'nan' is not a finite number", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0 nan\nv 0 0 1\nf 1 2 3\n"),
+      whole("obj_word_coordinate", "shape.obj:3: vertex coordinate 'abc' is not a number", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0 0\nv 0 0 abc\nf 1 2 3\n"),
+      whole("obj_huge_coordinate", "shape.obj:1: vertex coordinate '1e400' is not a finite number", obj_scene)
+        .with("shape.obj", "v 1e400 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n"),
+      whole("obj_zero_area", "shape.obj:4: a triangle of zero area", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"),
+      whole("obj_repeated_index", "shape.obj:4: a triangle of zero area", obj_scene).with("shape.obj", a_triangle + "f 1 1 2\n"),
+      whole("obj_index_not_a_number", "shape.obj:4: vertex index 'x' is not an integer", obj_scene)
+        .with("shape.obj", a_triangle + "f 1 2 x\n"),
+      whole("obj_index_out_of_range", "shape.obj:4: vertex index '7' names no vertex", obj_scene)
+        .with("shape.obj", a_triangle + "f 1 2 7\n"),
+      whole("obj_quad", "shape.obj:5: a face needs 3 vertices", obj_scene)
+        .with("shape.obj", a_triangle + "v 1 0 1\nf 1 2 4 3\n"),
+      BadInput{"obj_zero_segment", "shape.obj:3: a segment of zero length", obj_scene_2d,
+               {{"shape.obj", "v -1 0\nv -1 0\nl 1 2\n"}}},
+      BadInput{"msh_obstacle_zero_segment", "shape.msh' has a segment of zero length (segment 2)",
+               replaced(obj_scene_2d, "shape.obj", "shape.msh"),
+               {{"shape.msh", gmsh({"1 -1 0 0", "2 2 0 0", "3 2 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 3"})}}},
+      BadInput{"msh_obstacle_repeated_node", "shape.msh' has a segment of zero length (segment 2)",
+               replaced(obj_scene_2d, "shape.obj", "shape.msh"),
+               {{"shape.msh", gmsh({"1 -1 0 0", "2 2 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 2"})}}},
+      // Obstacle motions that define nothing.
+      appended("plane_normal_zero", "scene.prm:19: Obstacle 0/normal: must be a nonzero direction", obstacle(" set normal = 0, 0")),
+      whole("rotation_axis_zero", "Obstacle 0/rotation axis: must be a nonzero direction",
+            replaced(obj_scene, "set file = shape.obj", "set type = plane\n set rotation axis = 0, 0, 0\n"
+                                                        " set rotation angle = t")),
       // Coordinates a double cannot compute with.
       edited("coordinates_near_1e300", "Body 0: has a coordinate of 1e+300; coordinates must stay below",
              "set translation = 0, 0.01", "set translation = 1e300, 0.01"),
