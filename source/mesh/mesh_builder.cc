@@ -1,3 +1,4 @@
+#include <ritr/common/memory_estimate.h>
 #include <ritr/common/small_matrix.h>
 #include <ritr/mesh/gmsh_checks.h>
 #include <ritr/mesh/mesh_builder.h>
@@ -12,6 +13,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -28,6 +30,20 @@ namespace ritr
       for (int k = 0; k < dim; ++k)
         p[k] = k < static_cast<int>(v.size()) ? v[k] : 0.0;
       return p;
+    }
+
+    // At least this much memory goes with each cell in a run (measured through the first
+    // step: 4 KB per triangle, 14 KB per tetrahedron).
+    constexpr double bytes_per_cell = 2000;
+
+    // Throws before a body is made that could not fit in memory: `cells` before the body's
+    // uniform refinements, made by `what`.
+    template <int dim>
+    void check_fits_in_memory(const double cells, const BodyDescription &body, const std::string &what)
+    {
+      const double refined = cells * std::pow(2.0, dim * static_cast<double>(body.refinements));
+      if (const std::string problem = memory_problem(refined, bytes_per_cell, "cells"); !problem.empty())
+        throw std::runtime_error(what + " and " + std::to_string(body.refinements) + " refinements " + problem);
     }
 
     // Generates (or reads) one body as a simplex triangulation (lines in 1D).
@@ -53,6 +69,8 @@ namespace ritr
                                        "' is not a readable gmsh mesh of dimension " +
                                        std::to_string(dim));
             }
+          check_fits_in_memory<dim>(tria.n_active_cells(), body,
+                                    "the " + std::to_string(tria.n_active_cells()) + " cells of '" + body.file + "'");
         }
       else if (body.shape == "interval" || body.shape == "rectangle" || body.shape == "box")
         {
@@ -61,9 +79,17 @@ namespace ritr
             throw std::runtime_error("shape '" + body.shape + "' does not exist in dimension " +
                                      std::to_string(dim) + " (use '" + expected + "')");
           std::vector<unsigned int> subdivisions(dim);
+          double                    boxes = 1;
+          std::string               grid;
           for (int k = 0; k < dim; ++k)
-            subdivisions[k] = k < static_cast<int>(body.subdivisions.size()) ?
-                                std::max(1u, body.subdivisions[k]) : 1;
+            {
+              subdivisions[k] = k < static_cast<int>(body.subdivisions.size()) ?
+                                  std::max(1u, body.subdivisions[k]) : 1;
+              boxes *= subdivisions[k];
+              grid += (k == 0 ? "" : " x ") + std::to_string(subdivisions[k]);
+            }
+          // deal.II splits each square into 2 triangles, each cube into 5 tetrahedra.
+          check_fits_in_memory<dim>(boxes * (dim == 1 ? 1 : dim == 2 ? 2 : 5), body, grid + " subdivisions");
           const Point<dim> lower = to_point<dim>(body.lower), upper = to_point<dim>(body.upper);
           for (int k = 0; k < dim; ++k)
             if (!(upper[k] > lower[k]))
@@ -81,6 +107,11 @@ namespace ritr
                                      std::to_string(dim));
           if (!(body.radius > 0))
             throw std::runtime_error("radius must be positive");
+          // deal.II's balanced disk has 12 squares, its ball 32 cubes; each square becomes 8
+          // triangles, each cube 24 tetrahedra.
+          const double coarse = dim == 2 ? 12 * 8 : 32 * 24;
+          check_fits_in_memory<dim>(coarse * std::pow(2.0, dim * static_cast<double>(body.shape_refinements)), body,
+                                    std::to_string(body.shape_refinements) + " shape refinements");
           if constexpr (dim > 1)
             {
               Triangulation<dim> hex;

@@ -150,10 +150,14 @@ namespace ritr
             finite_value<dim>(*translation, Vec<dim>::Zero(), t, scene.where(name + "/translation"));
             finite_value<dim>(*angle, Vec<dim>::Zero(), t, scene.where(name + "/rotation angle"));
           }
-        obstacle.translation = [translation](double t) {
-          return Vec<dim>(translation->vector_value(Vec<dim>::Zero(), t));
+        // Checked at every time the run evaluates them too: a motion that stops being finite
+        // later is bad input named as such, not a failed step.
+        obstacle.translation = [translation, entry = scene.where(name + "/translation")](double t) {
+          return Vec<dim>(finite_value<dim>(*translation, Vec<dim>::Zero(), t, entry));
         };
-        obstacle.angle = [angle](double t) { return angle->value(Vec<dim>::Zero(), t); };
+        obstacle.angle = [angle, entry = scene.where(name + "/rotation angle")](double t) {
+          return finite_value<dim>(*angle, Vec<dim>::Zero(), t, entry)[0];
+        };
         obstacles.push_back(std::move(obstacle));
       }
     unsigned int n = 0;
@@ -189,6 +193,7 @@ namespace ritr
               for (const unsigned int n : mesh.boundary_facets[f])
                 selected[n] = true;
         dirichlet_displacements_.emplace_back(bc.displacement, dim);
+        dirichlet_entries_.push_back(displacement_entry);
         unsigned int count = 0;
         for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
           if (selected[i])
@@ -264,7 +269,8 @@ namespace ritr
     Eigen::VectorXd z = Eigen::VectorXd::Zero(initial_reference.size() + initial_obstacle_positions.size());
     for (const auto &[node, condition] : dirichlet_nodes_)
       z.template segment<dim>(node * dim) =
-        mesh.reference_node(node) + Vec<dim>(dirichlet_displacements_[condition].vector_value(mesh.reference_node(node), t));
+        mesh.reference_node(node) +
+        Vec<dim>(finite_value(dirichlet_displacements_[condition], mesh.reference_node(node), t, dirichlet_entries_[condition]));
     unsigned int i = mesh.n_nodes();
     for (const auto &o : obstacles)
       for (const auto &p : o.vertices_at(t))
@@ -275,7 +281,7 @@ namespace ritr
   template <int dim>
   std::array<double, dim> Problem<dim>::gravity(const double t) const
   {
-    const double            load = load_factor_->value(Vec<dim>::Zero(), t);
+    const double load = finite_value<dim>(*load_factor_, Vec<dim>::Zero(), t, scene.where("Gravity/load factor"))[0];
     std::array<double, dim> g;
     for (int k = 0; k < dim; ++k)
       g[k] = scene.gravity[k] * load;

@@ -346,6 +346,12 @@ namespace ritr
         write_summary(wall_seconds(), false, e.what());
         throw;
       }
+    catch (const InputError &e)
+      {
+        // An expression that is not finite at a later step's time (Problem::targets).
+        write_summary(wall_seconds(), false, e.what());
+        throw InputError(std::string(e.what()) + "; steps written so far are kept");
+      }
     write_summary(wall_seconds(), true);
   }
 

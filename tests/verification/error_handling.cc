@@ -143,6 +143,34 @@ TEST(ErrorHandling, FoldedElements)
   expect_input_error("folded", "", "inverted (folded) elements", "set shape = rectangle",
                      "set shape = file\n  set file = folded.msh");
 }
+// An expression that is finite where the scene is checked (t = 0 and the first step) but not
+// at a later step's time stops the run as bad input that names the expression and the time,
+// and keeps the steps written before it.
+TEST(ErrorHandling, ExpressionNotFiniteAtALaterStep)
+{
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    {"Obstacle 0/translation", "subsection Obstacle 0\n set translation = 0; log(0.015 - t)\nend\n"},
+    {"Gravity/load factor", "subsection Gravity\n set load factor = 1 + sqrt(0.015 - t)\nend\n"},
+    {"Dirichlet 0/displacement", "subsection Dirichlet 0\n set enabled = true\n set region = 0.1 - x\n"
+                                 " set displacement = 0; 0.01 * sqrt(0.015 - t)\nend\n"}};
+  for (std::size_t c = 0; c < cases.size(); ++c)
+    {
+      const auto &[entry, extra] = cases[c];
+      const std::string name = "later_" + std::to_string(c), out = "output/errors/" + name;
+      std::filesystem::remove_all(out);
+      const std::string file = scene_with(name, extra);
+      const RunResult   r    = run_ritr(file, "2>&1 >/dev/null");
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_NE(r.output.find(entry + ": is not finite at x = ("), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("t = 0.02; steps written so far are kept"), std::string::npos) << r.output;
+      EXPECT_TRUE(std::filesystem::exists(out + "/solution-00001.vtu")) << entry;
+      const std::string summary = read_file(out + "/summary.json");
+      EXPECT_NE(summary.find("\"complete\": false"), std::string::npos) << summary;
+      EXPECT_NE(summary.find("\"failure\": \"" + file), std::string::npos) << summary;
+    }
+}
+
 // Output directories that pass for creatable but cannot be made: refused before anything is
 // printed, the path and its parent untouched.
 TEST(ErrorHandling, OutputDirectoryThatCannotBeCreated)
@@ -442,6 +470,18 @@ namespace
       whole("rotation_axis_zero", "Obstacle 0/rotation axis: must be a nonzero direction",
             replaced(obj_scene, "set file = shape.obj", "set type = plane\n set rotation axis = 0, 0, 0\n"
                                                         " set rotation angle = t")),
+      // Sizes that cannot fit in memory are refused up front, with the numbers.
+      whole("refinements_bomb", "Body 0: 20 x 20 x 20 subdivisions and 8 refinements make 6.7e+11 cells, which need",
+            replaced(ball_scene, " set shape = ball", " set shape = box\n set subdivisions = 20, 20, 20\n set refinements = 8")),
+      edited("subdivisions_bomb", "Body 0: 100000000 x 100000000 subdivisions and 0 refinements make 2e+16 cells",
+             "set subdivisions = 4, 1", "set subdivisions = 100000000, 100000000"),
+      whole("shape_refinements_bomb", "Body 0: 8 shape refinements and 8 refinements make",
+            replaced(ball_scene, "set shape refinements = 0", "set shape refinements = 8\n set refinements = 8")),
+      appended("spike_count_bomb", "Obstacle 0/count: 2000000000 spikes make 4e+09 segments, which need at least",
+               obstacle(" set type = spikes\n set count = 2000000000")),
+      // Numbers a pattern lets through but a double cannot hold, with their line.
+      appended("epsilon_r_denormal", "scene.prm:19: Adaptivity/epsilon r",
+               "subsection Adaptivity\n set epsilon r = 4.9e-324\nend\n"),
       // Coordinates a double cannot compute with.
       edited("coordinates_near_1e300", "Body 0: has a coordinate of 1e+300; coordinates must stay below",
              "set translation = 0, 0.01", "set translation = 1e300, 0.01"),
