@@ -272,6 +272,27 @@ namespace ritr
   }
 
   template <int dim>
+  std::optional<std::array<int, 2>> CollisionMesh<dim>::crossing_vertices(const Eigen::VectorXd &z) const
+  {
+    const auto pair = contact::find_intersection<dim>(surface_, vertices(z));
+    if (!pair)
+      return std::nullopt;
+    return std::array<int, 2>{state_vertex_[(*pair)[0]], state_vertex_[(*pair)[1]]};
+  }
+
+  template <int dim>
+  std::optional<std::array<int, 2>> CollisionMesh<dim>::vertices_closer_than(const Eigen::VectorXd &z,
+                                                                             const double distance) const
+  {
+    const auto close = contact::build_constraints<dim>(surface_, vertices(z), rest_positions_, distance);
+    if (close.empty())
+      return std::nullopt;
+    // A constraint's stencil lists the first primitive's vertices, then the second's.
+    const auto &c = close.front();
+    return std::array<int, 2>{state_vertex_[c.vertices[0]], state_vertex_[c.vertices[c.n_vertices - 1]]};
+  }
+
+  template <int dim>
   double CollisionMesh<dim>::active_minimum_distance(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const
   {
     const Eigen::MatrixXd V = vertices(z);

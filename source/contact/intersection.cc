@@ -68,25 +68,31 @@ namespace ritr::contact
   } // namespace
 
   template <int dim>
-  bool has_intersections(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V)
+  std::optional<std::array<int, 2>> find_intersection(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V)
   {
     if constexpr (dim == 1)
       {
-        // Body intervals from their vertices; obstacle points and other bodies must stay outside.
-        std::map<int, std::pair<double, double>> interval;
+        // Body intervals from their vertices (and one vertex of each, to name it); obstacle
+        // points and other bodies must stay outside.
+        struct Interval
+        {
+          double lower, upper;
+          int    vertex;
+        };
+        std::map<int, Interval> interval;
         for (int v = 0; v < surface.n_vertices; ++v)
           if (!surface.vertex_is_obstacle(v))
             {
-              auto it = interval.emplace(surface.body_id[v], std::make_pair(V(v, 0), V(v, 0))).first;
-              it->second.first  = std::min(it->second.first, V(v, 0));
-              it->second.second = std::max(it->second.second, V(v, 0));
+              auto it = interval.emplace(surface.body_id[v], Interval{V(v, 0), V(v, 0), v}).first;
+              it->second.lower = std::min(it->second.lower, V(v, 0));
+              it->second.upper = std::max(it->second.upper, V(v, 0));
             }
         for (int v = 0; v < surface.n_vertices; ++v)
           for (const auto &[body, range] : interval)
-            if ((surface.vertex_is_obstacle(v) || surface.body_id[v] != body) && range.first <= V(v, 0) &&
-                V(v, 0) <= range.second)
-              return true;
-        return false;
+            if ((surface.vertex_is_obstacle(v) || surface.body_id[v] != body) && range.lower <= V(v, 0) &&
+                V(v, 0) <= range.upper)
+              return std::array<int, 2>{v, range.vertex};
+        return std::nullopt;
       }
     else
       {
@@ -102,9 +108,9 @@ namespace ritr::contact
         for (std::size_t e = 0; e < surface.edges.size(); ++e)
           {
             const auto &edge  = surface.edges[e];
-            bool        found = false;
+            int         found = -1;  // the primitive the edge meets
             tree.for_each_overlap(box_of<dim>(V, {edge[0], edge[1]}), [&](const int other) {
-              if (found)
+              if (found >= 0)
                 return;
               if constexpr (dim == 2)
                 {
@@ -112,8 +118,9 @@ namespace ritr::contact
                   if (static_cast<int>(e) >= other || o[0] == edge[0] || o[0] == edge[1] || o[1] == edge[0] ||
                       o[1] == edge[1] || (surface.edge_is_obstacle(e) && surface.edge_is_obstacle(other)))
                     return;
-                  found = segments_intersect(V.row(edge[0]).transpose(), V.row(edge[1]).transpose(),
-                                             V.row(o[0]).transpose(), V.row(o[1]).transpose());
+                  if (segments_intersect(V.row(edge[0]).transpose(), V.row(edge[1]).transpose(),
+                                         V.row(o[0]).transpose(), V.row(o[1]).transpose()))
+                    found = o[0];
                 }
               else
                 {
@@ -123,18 +130,28 @@ namespace ritr::contact
                       return;
                   if (surface.edge_is_obstacle(e) && surface.face_is_obstacle(other))
                     return;
-                  found = segment_triangle_intersect(V.row(edge[0]).transpose(), V.row(edge[1]).transpose(),
-                                                     V.row(f[0]).transpose(), V.row(f[1]).transpose(),
-                                                     V.row(f[2]).transpose());
+                  if (segment_triangle_intersect(V.row(edge[0]).transpose(), V.row(edge[1]).transpose(),
+                                                 V.row(f[0]).transpose(), V.row(f[1]).transpose(),
+                                                 V.row(f[2]).transpose()))
+                    found = f[0];
                 }
             });
-            if (found)
-              return true;
+            if (found >= 0)
+              return std::array<int, 2>{edge[0], found};
           }
-        return false;
+        return std::nullopt;
       }
   }
 
+  template <int dim>
+  bool has_intersections(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V)
+  {
+    return find_intersection<dim>(surface, V).has_value();
+  }
+
+  template std::optional<std::array<int, 2>> find_intersection<1>(const CollisionSurface<1> &, const Eigen::MatrixXd &);
+  template std::optional<std::array<int, 2>> find_intersection<2>(const CollisionSurface<2> &, const Eigen::MatrixXd &);
+  template std::optional<std::array<int, 2>> find_intersection<3>(const CollisionSurface<3> &, const Eigen::MatrixXd &);
   template bool has_intersections<1>(const CollisionSurface<1> &, const Eigen::MatrixXd &);
   template bool has_intersections<2>(const CollisionSurface<2> &, const Eigen::MatrixXd &);
   template bool has_intersections<3>(const CollisionSurface<3> &, const Eigen::MatrixXd &);

@@ -2,8 +2,7 @@
 
 #include <Eigen/Geometry>
 
-#include <fstream>
-#include <sstream>
+#include <algorithm>
 #include <stdexcept>
 
 namespace ritr::contact
@@ -139,65 +138,32 @@ namespace ritr::contact
   }
 
   template <int dim>
-  RigidObstacle<dim> read_obj(const std::string &file)
+  int first_degenerate_element(const RigidObstacle<dim> &obstacle)
   {
-    std::ifstream in(file);
-    if (!in)
-      throw std::runtime_error("cannot open obstacle file '" + file + "'");
-    RigidObstacle<dim> o;
-    std::string        line;
-    for (unsigned int number = 1; std::getline(in, line); ++number)
+    constexpr double degenerate = 1e-12;
+    const auto      &p          = obstacle.rest_vertices;
+    if (p.empty())
+      return -1;
+    Eigen::Matrix<double, dim, 1> lower = p.front(), upper = p.front();
+    for (const auto &v : p)
       {
-        std::istringstream ss(line);
-        std::string        tag;
-        ss >> tag;
-        const auto bad = [&](const std::string &what) {
-          throw std::runtime_error(file + ":" + std::to_string(number) + ": " + what);
-        };
-        // Face entries may be "i/t/n"; only the vertex index counts.
-        const auto read_index = [&](int n_vertices) {
-          std::string token;
-          if (!(ss >> token))
-            bad("missing vertex index");
-          const int i = std::stoi(token.substr(0, token.find('/')));
-          if (i < 1 || i > n_vertices)
-            bad("vertex index out of range");
-          return i - 1;
-        };
-        if (tag == "v")
-          {
-            double c[3] = {0, 0, 0};
-            if (!(ss >> c[0] >> c[1]))
-              bad("a vertex needs at least two coordinates");
-            ss >> c[2];
-            Eigen::Matrix<double, dim, 1> p;
-            for (int k = 0; k < dim; ++k)
-              p[k] = c[k];
-            o.rest_vertices.push_back(p);
-          }
-        else if (tag == "f" && dim == 3)
-          {
-            const int n = o.rest_vertices.size();
-            std::array<int, 3> f{read_index(n), read_index(n), read_index(n)};
-            o.faces.push_back(f);
-          }
-        else if (tag == "l" && dim == 2)
-          {
-            const int n = o.rest_vertices.size();
-            int       prev = read_index(n);
-            std::string rest;
-            while (ss >> std::ws && !ss.eof())
-              {
-                const int next = read_index(n);
-                o.edges.push_back({prev, next});
-                prev = next;
-              }
-          }
+        lower = lower.cwiseMin(v);
+        upper = upper.cwiseMax(v);
       }
-    if (o.rest_vertices.empty() || (dim == 2 && o.edges.empty()) || (dim == 3 && o.faces.empty()))
-      throw std::runtime_error("obstacle file '" + file + "' has no " +
-                               (dim == 2 ? "segments ('l' lines)" : "triangles ('f' lines)"));
-    return o;
+    const double shortest = degenerate * (upper - lower).norm();
+    if constexpr (dim == 2)
+      for (std::size_t e = 0; e < obstacle.edges.size(); ++e)
+        if (!((p[obstacle.edges[e][1]] - p[obstacle.edges[e][0]]).norm() > shortest))
+          return static_cast<int>(e);
+    if constexpr (dim == 3)
+      for (std::size_t f = 0; f < obstacle.faces.size(); ++f)
+        {
+          const auto  &a = p[obstacle.faces[f][0]], &b = p[obstacle.faces[f][1]], &c = p[obstacle.faces[f][2]];
+          const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+          if (!(longest > shortest) || !((b - a).cross(c - a).norm() > degenerate * longest * longest))
+            return static_cast<int>(f);
+        }
+    return -1;
   }
 
 #define RITR_INSTANTIATE(dim)                                                                          \
@@ -208,7 +174,7 @@ namespace ritr::contact
                                             const Eigen::Matrix<double, dim, 1> &);                    \
   template RigidObstacle<dim> make_spikes<dim>(const Eigen::Matrix<double, dim, 1> &, double,          \
                                                unsigned int, double);                                  \
-  template RigidObstacle<dim> read_obj<dim>(const std::string &);
+  template int                first_degenerate_element<dim>(const RigidObstacle<dim> &);
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)

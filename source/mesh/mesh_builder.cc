@@ -1,5 +1,6 @@
+#include <ritr/common/memory_estimate.h>
 #include <ritr/common/small_matrix.h>
-#include <ritr/mesh/gmsh_nodes.h>
+#include <ritr/mesh/gmsh_checks.h>
 #include <ritr/mesh/mesh_builder.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -12,6 +13,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -30,6 +32,20 @@ namespace ritr
       return p;
     }
 
+    // At least this much memory goes with each cell in a run (measured through the first
+    // step: 4 KB per triangle, 14 KB per tetrahedron).
+    constexpr double bytes_per_cell = 2000;
+
+    // Throws before a body is made that could not fit in memory: `cells` before the body's
+    // uniform refinements, made by `what`.
+    template <int dim>
+    void check_fits_in_memory(const double cells, const BodyDescription &body, const std::string &what)
+    {
+      const double refined = cells * std::pow(2.0, dim * static_cast<double>(body.refinements));
+      if (const std::string problem = memory_problem(refined, bytes_per_cell, "cells"); !problem.empty())
+        throw std::runtime_error(what + " and " + std::to_string(body.refinements) + " refinements " + problem);
+    }
+
     // Generates (or reads) one body as a simplex triangulation (lines in 1D).
     template <int dim>
     void generate_body(const BodyDescription &body, dealii::Triangulation<dim> &tria)
@@ -41,6 +57,7 @@ namespace ritr
           if (!in)
             throw std::runtime_error("cannot open mesh file '" + body.file + "'");
           check_unique_node_tags(body.file);
+          check_unique_elements(body.file, dim);
           GridIn<dim> grid_in(tria);
           try
             {
@@ -52,6 +69,8 @@ namespace ritr
                                        "' is not a readable gmsh mesh of dimension " +
                                        std::to_string(dim));
             }
+          check_fits_in_memory<dim>(tria.n_active_cells(), body,
+                                    "the " + std::to_string(tria.n_active_cells()) + " cells of '" + body.file + "'");
         }
       else if (body.shape == "interval" || body.shape == "rectangle" || body.shape == "box")
         {
@@ -60,9 +79,17 @@ namespace ritr
             throw std::runtime_error("shape '" + body.shape + "' does not exist in dimension " +
                                      std::to_string(dim) + " (use '" + expected + "')");
           std::vector<unsigned int> subdivisions(dim);
+          double                    boxes = 1;
+          std::string               grid;
           for (int k = 0; k < dim; ++k)
-            subdivisions[k] = k < static_cast<int>(body.subdivisions.size()) ?
-                                std::max(1u, body.subdivisions[k]) : 1;
+            {
+              subdivisions[k] = k < static_cast<int>(body.subdivisions.size()) ?
+                                  std::max(1u, body.subdivisions[k]) : 1;
+              boxes *= subdivisions[k];
+              grid += (k == 0 ? "" : " x ") + std::to_string(subdivisions[k]);
+            }
+          // deal.II splits each square into 2 triangles, each cube into 5 tetrahedra.
+          check_fits_in_memory<dim>(boxes * (dim == 1 ? 1 : dim == 2 ? 2 : 5), body, grid + " subdivisions");
           const Point<dim> lower = to_point<dim>(body.lower), upper = to_point<dim>(body.upper);
           for (int k = 0; k < dim; ++k)
             if (!(upper[k] > lower[k]))
@@ -80,6 +107,11 @@ namespace ritr
                                      std::to_string(dim));
           if (!(body.radius > 0))
             throw std::runtime_error("radius must be positive");
+          // deal.II's balanced disk has 12 squares, its ball 32 cubes; each square becomes 8
+          // triangles, each cube 24 tetrahedra.
+          const double coarse = dim == 2 ? 12 * 8 : 32 * 24;
+          check_fits_in_memory<dim>(coarse * std::pow(2.0, dim * static_cast<double>(body.shape_refinements)), body,
+                                    std::to_string(body.shape_refinements) + " shape refinements");
           if constexpr (dim > 1)
             {
               Triangulation<dim> hex;
@@ -183,10 +215,23 @@ namespace ritr
       return mesh;
     }
 
-    // Whether two orderings of the same facet's nodes are even permutations of each other.
+    // A facet as one cell sees it: its nodes in outward order, and in 1D, where a facet is a
+    // single node, which end of the cell it is (+1 the upper, -1 the lower).
     template <int dim>
-    bool same_orientation(const std::array<unsigned int, dim> &a, const std::array<unsigned int, dim> &b)
+    struct OrientedFacet
     {
+      std::array<unsigned int, dim> nodes;
+      int                           end = 0;
+    };
+
+    // Whether two cells see the same facet with the same orientation: then they lie on the
+    // same side of it.
+    template <int dim>
+    bool same_orientation(const OrientedFacet<dim> &first, const OrientedFacet<dim> &second)
+    {
+      if constexpr (dim == 1)
+        return first.end == second.end;
+      const auto &a = first.nodes, &b = second.nodes;
       // Segments: only the identity. Triangles: the even permutations are the rotations.
       for (int shift = 0; shift < (dim == 3 ? 3 : 1); ++shift)
         {
@@ -242,25 +287,28 @@ namespace ritr
         std::swap(cell[0], cell[1]);
 
     // A facet is on the boundary when exactly one cell has it.
-    std::map<std::array<unsigned int, dim>, std::pair<int, std::array<unsigned int, dim>>> facets;
+    std::map<std::array<unsigned int, dim>, std::pair<int, OrientedFacet<dim>>> facets;
     for (const auto &cell : mesh.cells)
       for (int skip = 0; skip <= dim; ++skip)
         {
           // Facet opposite node `skip`, outward-oriented: the boundary of a positive simplex
-          // is sum_i (-1)^i [nodes without i], so odd facets are reversed.
-          std::array<unsigned int, dim> facet;
+          // is sum_i (-1)^i [nodes without i], so odd facets are reversed (in 1D: node 1 is
+          // the upper end).
+          OrientedFacet<dim> facet;
           for (int a = 0, j = 0; a <= dim; ++a)
             if (a != skip)
-              facet[j++] = cell[a];
+              facet.nodes[j++] = cell[a];
           if (skip % 2 == 1 && dim > 1)
-            std::swap(facet[0], facet[1]);
-          auto key = facet;
+            std::swap(facet.nodes[0], facet.nodes[1]);
+          facet.end = skip == 0 ? 1 : -1;
+          auto key  = facet.nodes;
           std::sort(key.begin(), key.end());
           auto &entry = facets[key];
           // Two positively oriented cells on opposite sides of a facet see it with opposite
           // orientations; the same orientation twice, or a third cell, means that cells
-          // overlap (a folded or inverted element in the input).
-          if (dim > 1 && (entry.first >= 2 || (entry.first == 1 && same_orientation<dim>(entry.second, facet))))
+          // overlap (a folded or inverted element in the input; in 1D a rod folded back on
+          // itself or branching).
+          if (entry.first >= 2 || (entry.first == 1 && same_orientation<dim>(entry.second, facet)))
             throw std::runtime_error("the mesh has inverted (folded) elements");
           entry.first += 1;
           entry.second = facet;
@@ -268,7 +316,7 @@ namespace ritr
     mesh.boundary_facets.clear();
     for (const auto &[key, entry] : facets)
       if (entry.first == 1)
-        mesh.boundary_facets.push_back(entry.second);
+        mesh.boundary_facets.push_back(entry.second.nodes);
     mesh.boundary_ids.assign(mesh.boundary_facets.size(), 0);
 
     // Bodies are the connected components of the cell graph (union-find over nodes).

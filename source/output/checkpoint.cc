@@ -7,6 +7,7 @@
 #include <ritr/common/input_error.h>
 #include <ritr/output/checkpoint.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,7 +19,8 @@ namespace ritr
   namespace
   {
     constexpr char          magic[8]   = {'R', 'I', 'T', 'R', 'C', 'K', 'P', 'T'};
-    constexpr std::uint32_t version    = 3;  // 2: steps carry the outer stop; 3: the barrier stiffness
+    // 2: steps carry the outer stop; 3: the barrier stiffness; 4: the final energy terms
+    constexpr std::uint32_t version    = 4;
     constexpr std::uint32_t byte_order = 0x01020304;
     constexpr std::size_t   header_size = sizeof(magic) + 2 * sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -132,6 +134,29 @@ namespace ritr
     }
 
     constexpr std::size_t report_size = 5 * sizeof(std::uint32_t) + 11 * sizeof(double);
+
+    // What a checksum cannot catch: contents that no run writes ("" when there is none).
+    std::string implausible_contents(const Checkpoint &c)
+    {
+      for (const Eigen::VectorXd *v : {&c.u, &c.x, &c.v, &c.obstacle_positions})
+        if (!v->allFinite())
+          return "its state is not finite";
+      if (!std::isfinite(c.time) || c.time < 0)
+        return "its time is not a finite time";
+      if (!(c.barrier_stiffness >= 0) || !std::isfinite(c.barrier_stiffness))
+        return "its barrier stiffness is not finite";
+      double previous = 0;
+      for (std::size_t i = 0; i < c.history.size(); ++i)
+        {
+          const StepReport &r = c.history[i];
+          if (r.step != i + 1 || !(r.time >= previous) || !std::isfinite(r.time))
+            return "its step reports are out of order";
+          previous = r.time;
+        }
+      if (c.time != previous)
+        return "its time is not its last step's";
+      return "";
+    }
   } // namespace
 
   std::uint64_t fnv1a(const void *data, const std::size_t bytes, std::uint64_t hash)
@@ -163,6 +188,12 @@ namespace ritr
     payload.put(c.linear_solve_seconds);
     payload.put<std::uint64_t>(c.symbolic_factorizations);
     payload.put<std::uint64_t>(c.numeric_factorizations);
+    payload.put<std::uint64_t>(c.final_energy_terms.size());
+    for (const auto &[name, value] : c.final_energy_terms)
+      {
+        payload.put(name);
+        payload.put(value);
+      }
 
     Writer file;
     file.bytes.append(magic, sizeof(magic));
@@ -174,11 +205,16 @@ namespace ritr
     write_file_atomically(path, [&](std::ostream &out) { out.write(file.bytes.data(), file.bytes.size()); });
   }
 
+  InputError no_checkpoint_error(const std::string &path)
+  {
+    return InputError(path + ": no checkpoint to resume from (run the scene without --resume to start it)");
+  }
+
   Checkpoint read_checkpoint(const std::string &path)
   {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec))
-      throw InputError(path + ": no checkpoint to resume from (run the scene without --resume to start it)");
+      throw no_checkpoint_error(path);
     std::ifstream in(path, std::ios::binary);
     if (!in || !std::filesystem::is_regular_file(path, ec))
       throw InputError(path + ": cannot be read");
@@ -237,8 +273,16 @@ namespace ritr
     c.linear_solve_seconds    = r.get<double>();
     c.symbolic_factorizations = r.get<std::uint64_t>();
     c.numeric_factorizations  = r.get<std::uint64_t>();
+    c.final_energy_terms.resize(r.count(sizeof(std::uint64_t) + sizeof(double)));
+    for (auto &[name, value] : c.final_energy_terms)
+      {
+        name  = r.string();
+        value = r.get<double>();
+      }
     if (!r.at_end())
       r.corrupted();
+    if (const std::string problem = implausible_contents(c); !problem.empty())
+      throw InputError(path + ": is corrupted (" + problem + ")");
     return c;
   }
 } // namespace ritr

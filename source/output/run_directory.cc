@@ -72,13 +72,18 @@ namespace ritr
     const fs::file_status status = fs::status(directory, ec);
     if (status.type() == fs::file_type::not_found)
       {
-        // It will be created: its nearest existing ancestor must be a writable directory.
+        // It will be created: its nearest existing ancestor must be a writable directory, and
+        // none of the missing folders a symbolic link to nowhere (it cannot be made).
         fs::path ancestor = directory;
-        while (fs::status(ancestor, ec).type() == fs::file_type::not_found && ancestor.has_parent_path() &&
-               ancestor.parent_path() != ancestor)
-          ancestor = ancestor.parent_path();
-        if (fs::status(ancestor, ec).type() == fs::file_type::not_found)
-          ancestor = ".";
+        while (fs::status(ancestor, ec).type() == fs::file_type::not_found)
+          {
+            if (fs::symlink_status(ancestor, ec).type() == fs::file_type::symlink)
+              return "cannot be created: " + quoted(ancestor) + " is a symbolic link to a missing target";
+            if (ancestor == ".")
+              break;
+            const bool at_top = !ancestor.has_parent_path() || ancestor.parent_path() == ancestor;
+            ancestor          = at_top ? fs::path(".") : ancestor.parent_path();
+          }
         if (!fs::is_directory(ancestor, ec))
           return "cannot be created: " + quoted(ancestor) + " is not a directory";
         if (!writable(ancestor))
@@ -102,14 +107,16 @@ namespace ritr
 
   void remove_previous_outputs(const fs::path &directory)
   {
-    std::vector<fs::path> collections, others;
+    std::vector<fs::path> checkpoints, collections, others;
     for (const auto &entry : fs::directory_iterator(directory))
       {
         const std::string name = entry.path().filename().string();
-        if (is_run_output(name) && name != "summary.json")
-          (ends_with(name, ".pvd") ? collections : others).push_back(entry.path());
+        if (!is_run_output(name) || name == "summary.json")
+          continue;
+        (name == "checkpoint.bin" ? checkpoints : ends_with(name, ".pvd") ? collections : others)
+          .push_back(entry.path());
       }
-    for (const auto *files : {&collections, &others})
+    for (const auto *files : {&checkpoints, &collections, &others})
       for (const auto &file : *files)
         fs::remove(file);
   }

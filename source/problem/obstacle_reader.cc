@@ -1,4 +1,4 @@
-#include <ritr/mesh/gmsh_nodes.h>
+#include <ritr/mesh/gmsh_checks.h>
 #include <ritr/problem/obstacle_reader.h>
 
 #include <deal.II/grid/grid_in.h>
@@ -22,6 +22,7 @@ namespace ritr
           throw std::runtime_error("cannot open obstacle file '" + file + "'");
         dealii::Triangulation<dim - 1, dim> surface;
         check_unique_node_tags(file);
+        check_unique_elements(file, dim - 1);
         dealii::GridIn<dim - 1, dim>        grid_in(surface);
         try
           {
@@ -50,6 +51,13 @@ namespace ritr
               obstacle.faces.push_back({{static_cast<int>(cell->vertex_index(0)), static_cast<int>(cell->vertex_index(1)),
                                          static_cast<int>(cell->vertex_index(2))}});
           }
+        for (const auto &p : obstacle.rest_vertices)
+          if (!p.allFinite())
+            throw std::runtime_error("obstacle file '" + file + "' has a vertex that is not finite");
+        if (const int e = contact::first_degenerate_element(obstacle); e >= 0)
+          throw std::runtime_error("obstacle file '" + file + "' has " +
+                                   (dim == 2 ? "a segment of zero length (segment " : "a triangle of zero area (triangle ") +
+                                   std::to_string(e + 1) + ")");
       }
     return obstacle;
   }

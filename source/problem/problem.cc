@@ -1,11 +1,10 @@
 #include <ritr/common/input_error.h>
+#include <ritr/contact/obj_file.h>
 #include <ritr/problem/obstacle_reader.h>
-#include <ritr/metrics/mesh_metrics.h>
 #include <ritr/problem/problem.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 namespace ritr
@@ -151,10 +150,14 @@ namespace ritr
             finite_value<dim>(*translation, Vec<dim>::Zero(), t, scene.where(name + "/translation"));
             finite_value<dim>(*angle, Vec<dim>::Zero(), t, scene.where(name + "/rotation angle"));
           }
-        obstacle.translation = [translation](double t) {
-          return Vec<dim>(translation->vector_value(Vec<dim>::Zero(), t));
+        // Checked at every time the run evaluates them too: a motion that stops being finite
+        // later is bad input named as such, not a failed step.
+        obstacle.translation = [translation, entry = scene.where(name + "/translation")](double t) {
+          return Vec<dim>(finite_value<dim>(*translation, Vec<dim>::Zero(), t, entry));
         };
-        obstacle.angle = [angle](double t) { return angle->value(Vec<dim>::Zero(), t); };
+        obstacle.angle = [angle, entry = scene.where(name + "/rotation angle")](double t) {
+          return finite_value<dim>(*angle, Vec<dim>::Zero(), t, entry)[0];
+        };
         obstacles.push_back(std::move(obstacle));
       }
     unsigned int n = 0;
@@ -190,6 +193,7 @@ namespace ritr
               for (const unsigned int n : mesh.boundary_facets[f])
                 selected[n] = true;
         dirichlet_displacements_.emplace_back(bc.displacement, dim);
+        dirichlet_entries_.push_back(displacement_entry);
         unsigned int count = 0;
         for (unsigned int i = 0; i < mesh.n_nodes(); ++i)
           if (selected[i])
@@ -260,38 +264,13 @@ namespace ritr
   }
 
   template <int dim>
-  void Problem<dim>::check_initial_state() const
-  {
-    const std::string &file = scene.parameter_file;
-    double             smallest = std::numeric_limits<double>::max(), largest = 0;
-    for (const auto &cell : mesh.cells)
-      {
-        const double m = std::abs(simplex_measure<dim, double>(cell_nodes<dim>(initial_reference, cell)));
-        smallest       = std::min(smallest, m);
-        largest        = std::max(largest, m);
-      }
-    if (!(smallest > 1e-12 * largest))
-      throw InputError(file + ": Body: the mesh has degenerate (zero-measure) elements");
-    if (!(min_deformed_jacobian(mesh, initial_positions, initial_reference) > 0))
-      throw InputError(file + ": Dirichlet: the initial prescribed displacement inverts elements");
-    if (collisions)
-      {
-        Eigen::VectorXd z(initial_positions.size() + initial_obstacle_positions.size());
-        z << initial_positions, initial_obstacle_positions;
-        // Distances at round-off level are contact too: the barrier could not push them apart.
-        const double d = collisions->minimum_distance(z);
-        if (!(d > 1e-12 * collisions->bbox_diagonal(z)) || collisions->has_intersections(z))
-          throw InputError(file + ": the initial configuration intersects (bodies or obstacles overlap or touch)");
-      }
-  }
-
-  template <int dim>
   Eigen::VectorXd Problem<dim>::targets(const double t) const
   {
     Eigen::VectorXd z = Eigen::VectorXd::Zero(initial_reference.size() + initial_obstacle_positions.size());
     for (const auto &[node, condition] : dirichlet_nodes_)
       z.template segment<dim>(node * dim) =
-        mesh.reference_node(node) + Vec<dim>(dirichlet_displacements_[condition].vector_value(mesh.reference_node(node), t));
+        mesh.reference_node(node) +
+        Vec<dim>(finite_value(dirichlet_displacements_[condition], mesh.reference_node(node), t, dirichlet_entries_[condition]));
     unsigned int i = mesh.n_nodes();
     for (const auto &o : obstacles)
       for (const auto &p : o.vertices_at(t))
@@ -302,7 +281,7 @@ namespace ritr
   template <int dim>
   std::array<double, dim> Problem<dim>::gravity(const double t) const
   {
-    const double            load = load_factor_->value(Vec<dim>::Zero(), t);
+    const double load = finite_value<dim>(*load_factor_, Vec<dim>::Zero(), t, scene.where("Gravity/load factor"))[0];
     std::array<double, dim> g;
     for (int k = 0; k < dim; ++k)
       g[k] = scene.gravity[k] * load;

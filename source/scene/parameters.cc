@@ -1,3 +1,4 @@
+#include <ritr/common/memory_estimate.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/scene/expression.h>
 #include <ritr/scene/parameter_text.h>
@@ -183,6 +184,47 @@ namespace ritr
       return slash == std::string::npos ? path : prm_file.substr(0, slash + 1) + path;
     }
 
+    // Refuses (through `fail`) a row of spikes too large for memory: `count` spikes make
+    // 2 count segments in 2D, 4 count^2 triangles in 3D, each with at least this much memory
+    // (measured: 830 bytes per triangle through the first step).
+    template <typename Fail>
+    void check_spike_count(const double count, const int dim, const Fail &fail)
+    {
+      constexpr double bytes_per_facet = 500;
+      const double     facets          = dim == 2 ? 2 * count : 4 * count * count;
+      if (const std::string problem = memory_problem(facets, bytes_per_facet, dim == 2 ? "segments" : "triangles");
+          !problem.empty())
+        fail(std::to_string(static_cast<long long>(count)) + " spikes " + problem);
+    }
+
+    // Whether an expression is the constant zero ("0", "0.0", " -0 ").
+    bool is_constant_zero(const std::string &expression)
+    {
+      char        *end   = nullptr;
+      const double value = std::strtod(expression.c_str(), &end);
+      return end != expression.c_str() && std::string(end).find_first_not_of(" \t") == std::string::npos && value == 0;
+    }
+
+    // Refuses (through `fail(entry, what)`) an obstacle's directions that define nothing: a
+    // plane's zero normal (it would collapse to a point) and, in 3D, a zero rotation axis of
+    // an obstacle that rotates (the rotation would shrink it).
+    template <typename Fail>
+    void check_directions(const ObstacleScene &obstacle, const int dim, const Fail &fail)
+    {
+      const auto length = [&](const std::vector<double> &v, const int n) {
+        double squares = 0;
+        for (int k = 0; k < n; ++k)
+          squares += v[k] * v[k];
+        return std::sqrt(squares);
+      };
+      if (obstacle.type == "plane" && !(length(obstacle.normal, dim) > 0 && std::isfinite(length(obstacle.normal, dim))))
+        fail("normal", "must be a nonzero direction");
+      if (dim == 3 && !is_constant_zero(obstacle.rotation_angle) &&
+          !(length(obstacle.rotation_axis, 3) > 0 && std::isfinite(length(obstacle.rotation_axis, 3))))
+        fail("rotation axis", "must be a nonzero direction when the obstacle rotates (rotation angle '" +
+                                shortened(obstacle.rotation_angle) + "')");
+    }
+
     // The scene of a parsed parameter file, with every check that needs more than a pattern.
     Scene validated_scene(ParameterHandler &prm, const SceneFile &scene_file, const std::string &file)
     {
@@ -299,7 +341,10 @@ namespace ritr
               ob.point           = get_numbers(prm, s, name, "point", dim);
               ob.normal          = get_numbers(prm, s, name, "normal", dim);
               ob.size            = get_numbers(prm, s, name, "size", box ? dim : 1);
-              ob.count           = prm.get_integer("count");
+              const double count = prm.get_integer("count");
+              if (ob.type == "spikes" && dim > 1)
+                check_spike_count(count, dim, [&](const std::string &what) { fail(name + "/count", what); });
+              ob.count           = static_cast<unsigned int>(count);
               ob.spike_height    = prm.get_double("spike height");
               ob.translation     = vector_expression(prm, "translation", dim);
               ob.rotation_angle  = prm.get("rotation angle");
@@ -313,6 +358,9 @@ namespace ritr
                 fail(name + "/type", "in 1D only 'plane' obstacles (walls) exist");
               check_expression(dim, ob.translation, dim, s.where(name + "/translation"));
               check_expression(dim, ob.rotation_angle, 1, s.where(name + "/rotation angle"));
+              check_directions(ob, dim, [&](const std::string &entry, const std::string &what) {
+                fail(name + "/" + entry, what);
+              });
               s.obstacles.push_back(ob);
             }
           prm.leave_subsection();
@@ -380,11 +428,11 @@ namespace ritr
       {
         std::stringstream ss;
         e.print_info(ss);
-        throw InputError(fold_parser_message(ss.str(), file));
+        throw InputError(fold_parser_message(ss.str(), file, scene_file));
       }
     catch (const std::exception &e)
       {
-        throw InputError(fold_parser_message(e.what(), file));
+        throw InputError(fold_parser_message(e.what(), file, scene_file));
       }
   }
 } // namespace ritr

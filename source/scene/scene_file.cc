@@ -101,7 +101,25 @@ namespace ritr
     return scene;
   }
 
-  std::string fold_parser_message(const std::string &message, const std::string &file)
+  namespace
+  {
+    // The path ("Adaptivity/epsilon r") of the one entry named `name` that `scene` sets, or "".
+    std::string set_entry_named(const std::string &name, const SceneFile &scene)
+    {
+      std::string found;
+      for (const auto &[path, line] : scene.lines)
+        if (path == name || (path.size() > name.size() && path.compare(path.size() - name.size(), name.size(), name) == 0 &&
+                             path[path.size() - name.size() - 1] == '/'))
+          {
+            if (!found.empty())
+              return "";
+            found = path;
+          }
+      return found;
+    }
+  } // namespace
+
+  std::string fold_parser_message(const std::string &message, const std::string &file, const SceneFile &scene)
   {
     std::stringstream ss(message);
     std::string       line, folded;
@@ -123,7 +141,17 @@ namespace ritr
           folded += (folded.empty() ? "" : " ") + shortened_line(line);
       }
     if (folded.compare(0, file.size(), file) != 0)
-      folded = file + ": " + (folded.empty() ? "malformed parameter file" : folded);
+      {
+        const std::string named = "for entry <";
+        const auto        start = message.find(named);
+        const auto        end   = start == std::string::npos ? start : message.find('>', start + named.size());
+        const std::string entry =
+          end == std::string::npos ? "" : set_entry_named(message.substr(start + named.size(), end - start - named.size()), scene);
+        if (!entry.empty())
+          folded = file + ":" + std::to_string(scene.lines.at(entry)) + ": " + shortened(entry) + ": " + folded;
+        else
+          folded = file + ": " + (folded.empty() ? "malformed parameter file" : folded);
+      }
     return folded;
   }
 } // namespace ritr

@@ -1,9 +1,11 @@
 // The outputs of a run (the output contract of the design notes): VTU/PVD files, log.csv,
 // summary.json, and the run's ownership of its output directory.
 #include <ritr/common/atomic_file.h>
+#include <ritr/common/input_error.h>
 #include <ritr/common/wall_clock.h>
 #include <ritr/elasticity/stress.h>
 #include <ritr/metrics/mesh_metrics.h>
+#include <ritr/output/checkpoint.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/output/vtk_files.h>
 #include <ritr/terms/contact_barrier_term.h>
@@ -262,11 +264,40 @@ namespace ritr
   }
 
   template <int dim>
+  void Simulation<dim>::claim_output_directory(const bool resuming)
+  {
+    if (directory_lock_)
+      return;
+    namespace fs             = std::filesystem;
+    const fs::path directory = scene_.output_directory;
+    const auto     refuse    = [&](const std::string &what) {
+      throw InputError(scene_.where("output directory") + ": '" + shortened(directory.string()) + "' " + what);
+    };
+    std::error_code ec;
+    if (resuming)
+      {
+        // A resume creates nothing: without the directory there is no checkpoint.
+        if (!fs::is_directory(directory, ec))
+          throw no_checkpoint_error((directory / "checkpoint.bin").string());
+      }
+    else if (fs::create_directories(directory, ec); ec)
+      refuse("cannot be created: " + ec.message());
+    try
+      {
+        directory_lock_ = std::make_unique<OutputDirectoryLock>(directory);
+      }
+    catch (const std::runtime_error &e)
+      {
+        refuse(e.what());
+      }
+  }
+
+  template <int dim>
   void Simulation<dim>::run()
   {
     // From here on the directory belongs to this run (the scene has been validated): its
     // summary says "complete": false until the end, and nothing of a previous run stays.
-    std::filesystem::create_directories(scene_.output_directory);
+    claim_output_directory(false);
     create_outputs();
     write_summary(0, false);
     remove_previous_outputs(outputs_->directory);
@@ -287,6 +318,13 @@ namespace ritr
         while (step_ < n_steps)
           {
             const StepReport r = advance();
+            // The final energy term by term while the terms hold the last step's context; the
+            // last checkpoint keeps it for a run resumed after it.
+            if (step_ == n_steps)
+              {
+                const Eigen::VectorXd z = state();
+                last_step_terms_        = terms_.values(z, terms_.candidates_at(z));
+              }
             append_log_row(r);
             flush_logs();
             // The checkpoint comes last: every file it accounts for is in place before it.
@@ -308,12 +346,11 @@ namespace ritr
         write_summary(wall_seconds(), false, e.what());
         throw;
       }
-    // The final energy term by term, once, while the terms still hold the last step's
-    // context (they hold none when this process ran no step).
-    if (step_ > first_step)
+    catch (const InputError &e)
       {
-        const Eigen::VectorXd z = state();
-        last_step_terms_        = terms_.values(z, terms_.candidates_at(z));
+        // An expression that is not finite at a later step's time (Problem::targets).
+        write_summary(wall_seconds(), false, e.what());
+        throw InputError(std::string(e.what()) + "; steps written so far are kept");
       }
     write_summary(wall_seconds(), true);
   }

@@ -85,6 +85,7 @@ namespace ritr
     c.barrier_stiffness    = barrier_stiffness_;
     c.history              = history_;
     c.invariant_violations = invariant_violations_;
+    c.final_energy_terms   = last_step_terms_;
     c.wall_seconds         = wall_seconds();
     c.output_seconds       = outputs_->output_seconds;
     c.linear_solve_seconds = earlier_.linear_solve_seconds + newton_solver().seconds_in_linear_solves();
@@ -95,9 +96,28 @@ namespace ritr
   }
 
   template <int dim>
+  std::vector<std::string> Simulation<dim>::frame_files(const unsigned int last_step) const
+  {
+    std::vector<std::string> files;
+    for (unsigned int s = 0; s <= last_step; ++s)
+      if (writes_frame(s))
+        {
+          for (const char *stem : {"solution", "reference"})
+            files.push_back(numbered_output(stem, s, ".vtu"));
+          if (!obstacles_.empty())
+            files.push_back(numbered_output("obstacles", s, ".vtu"));
+          if (scene_.write_nodal_csv)
+            files.push_back(numbered_output("nodes", s, ".csv"));
+        }
+    return files;
+  }
+
+  template <int dim>
   bool Simulation<dim>::resume()
   {
-    // Everything is read and checked before the first file is written.
+    // The directory is this process's before anything in it is read; everything is read and
+    // checked before the first file is written.
+    claim_output_directory(true);
     const fs::path    directory = scene_.output_directory;
     const std::string file      = (directory / "checkpoint.bin").string();
     const Checkpoint  c         = read_checkpoint(file);
@@ -112,9 +132,16 @@ namespace ritr
         c.obstacle_positions.size() != obstacle_positions_.size() || c.history.size() != c.step ||
         c.step > n_steps)
       throw InputError(file + ": is corrupted (its sizes do not match the scene)");
+    if (c.time > scene_.end_time)
+      throw InputError(file + ": is corrupted (its time is past the scene's end time)");
     if (c.step == n_steps &&
         read_text(directory / "summary.json").find("\"complete\": true") != std::string::npos)
       return false;
+    // The collections will list every frame up to the checkpoint: each must be there.
+    for (const std::string &frame : frame_files(c.step))
+      if (std::error_code ec; !fs::is_regular_file(directory / frame, ec))
+        throw InputError((directory / frame).string() + ": is missing, and " + file +
+                         " builds on it (run the scene without --resume to start over)");
     // newton.csv is the one output that cannot be rebuilt from the checkpoint.
     const std::string newton_rows = scene_.solver.newton_log ? rows_up_to(directory / "newton.csv", c.step) : "";
 
@@ -127,6 +154,7 @@ namespace ritr
     time_                 = c.time;
     history_              = c.history;
     invariant_violations_ = c.invariant_violations;
+    last_step_terms_      = c.final_energy_terms;
     earlier_.wall_seconds            = c.wall_seconds;
     earlier_.linear_solve_seconds    = c.linear_solve_seconds;
     earlier_.symbolic_factorizations = c.symbolic_factorizations;

@@ -1,6 +1,6 @@
 #pragma once
-// Runs the ritr executable (test_paths.h)
-// and captures its exit code and standard error; reads and writes whole files and folders.
+// Runs the ritr executable (test_paths.h), in the foreground capturing its exit code and
+// output, or in the background; reads and writes whole files and folders.
 #include "test_paths.h"
 
 #include <algorithm>
@@ -15,6 +15,9 @@
 #include <string>
 #include <sys/wait.h>
 #include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace ritr::test_support
 {
@@ -69,6 +72,36 @@ end
   inline RunResult run_ritr(const std::string &arguments, const std::string &redirections = "2>&1")
   {
     return run_command(ritr_binary() + " " + arguments, redirections);
+  }
+
+  // Starts ritr with `arguments` in the background, its output discarded; returns its process
+  // id (for waitpid and kill).
+  inline pid_t start_ritr(const std::vector<std::string> &arguments)
+  {
+    // Everything the child needs is made before fork: it only calls exec.
+    const std::string   binary = ritr_binary();
+    std::vector<char *> argv{const_cast<char *>("ritr")};
+    for (const auto &a : arguments)
+      argv.push_back(const_cast<char *>(a.c_str()));
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0)
+      {
+        const int null = open("/dev/null", O_WRONLY);
+        dup2(null, 1);
+        dup2(null, 2);
+        execv(binary.c_str(), argv.data());
+        _exit(127);
+      }
+    return pid;
+  }
+
+  // The exit code of a process started by start_ritr, once it has ended (-1: killed).
+  inline int exit_code_of(const pid_t pid)
+  {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
 
   inline std::string read_file(const std::string &path)

@@ -122,3 +122,23 @@ TEST(MeshBuilding, IntervalAndErrors)
   wrong.file  = "does-not-exist.msh";
   EXPECT_THROW(build_mesh<2>({wrong}), std::runtime_error);
 }
+
+// Rods get the overlap check of triangles and tetrahedra: two cells on the same side of a
+// node (a rod folded back, a segment given twice) are refused; cells in any node order and
+// any listing order are not.
+TEST(MeshBuilding, FoldedOrDoubledRodsAreRefused)
+{
+  const auto rod = [](const std::vector<double> &x, const std::vector<std::array<unsigned int, 2>> &cells) {
+    SimplexMesh<1> mesh;
+    mesh.reference = Eigen::Map<const Eigen::VectorXd>(x.data(), x.size());
+    mesh.cells     = cells;
+    compute_boundary_and_bodies(mesh);
+    return mesh;
+  };
+  const auto straight = rod({0, 2, 1}, {{{2, 0}}, {{1, 2}}});
+  EXPECT_EQ(straight.boundary_facets.size(), 2u);
+  EXPECT_NEAR(total_measure(straight), 2.0, 1e-14);
+  EXPECT_THROW(rod({0, 1, 0.5}, {{{0, 1}}, {{1, 2}}}), std::runtime_error);           // folded at node 1
+  EXPECT_THROW(rod({0, 0.5, 1}, {{{0, 1}}, {{1, 2}}, {{2, 1}}}), std::runtime_error);  // segment twice
+  EXPECT_THROW(rod({0, 1, 2, 1.5}, {{{0, 1}}, {{1, 2}}, {{1, 3}}}), std::runtime_error);  // branching
+}

@@ -143,6 +143,77 @@ TEST(ErrorHandling, FoldedElements)
   expect_input_error("folded", "", "inverted (folded) elements", "set shape = rectangle",
                      "set shape = file\n  set file = folded.msh");
 }
+// An expression that is finite where the scene is checked (t = 0 and the first step) but not
+// at a later step's time stops the run as bad input that names the expression and the time,
+// and keeps the steps written before it.
+TEST(ErrorHandling, ExpressionNotFiniteAtALaterStep)
+{
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    {"Obstacle 0/translation", "subsection Obstacle 0\n set translation = 0; log(0.015 - t)\nend\n"},
+    {"Gravity/load factor", "subsection Gravity\n set load factor = 1 + sqrt(0.015 - t)\nend\n"},
+    {"Dirichlet 0/displacement", "subsection Dirichlet 0\n set enabled = true\n set region = 0.1 - x\n"
+                                 " set displacement = 0; 0.01 * sqrt(0.015 - t)\nend\n"}};
+  for (std::size_t c = 0; c < cases.size(); ++c)
+    {
+      const auto &[entry, extra] = cases[c];
+      const std::string name = "later_" + std::to_string(c), out = "output/errors/" + name;
+      std::filesystem::remove_all(out);
+      const std::string file = scene_with(name, extra);
+      const RunResult   r    = run_ritr(file, "2>&1 >/dev/null");
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_NE(r.output.find(entry + ": is not finite at x = ("), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("t = 0.02; steps written so far are kept"), std::string::npos) << r.output;
+      EXPECT_TRUE(std::filesystem::exists(out + "/solution-00001.vtu")) << entry;
+      const std::string summary = read_file(out + "/summary.json");
+      EXPECT_NE(summary.find("\"complete\": false"), std::string::npos) << summary;
+      EXPECT_NE(summary.find("\"failure\": \"" + file), std::string::npos) << summary;
+    }
+}
+
+// Output directories that pass for creatable but cannot be made: refused before anything is
+// printed, the path and its parent untouched.
+TEST(ErrorHandling, OutputDirectoryThatCannotBeCreated)
+{
+  const std::string folder = "output/errors/uncreatable";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  std::filesystem::create_symlink("missing/target", folder + "/dangling");
+  for (const std::string &directory : {std::string("/proc/ritr-output"), folder + "/dangling", folder + "/dangling/below"})
+    {
+      const std::string scene = folder + "/scene.prm";
+      write_file(scene, replaced(small_scene, "OUTPUT", directory));
+      const auto      before = snapshot(folder);
+      const RunResult r      = run_ritr(scene, "2>&1 >" + folder + ".stdout");
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_EQ(read_file(folder + ".stdout"), "") << directory;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_EQ(r.output.rfind("ritr: error: " + scene + ":4: output directory: '" + directory + "' cannot be created", 0), 0u)
+        << r.output;
+      EXPECT_TRUE(snapshot(folder) == before) << directory;
+      EXPECT_FALSE(std::filesystem::exists(directory)) << directory;
+    }
+}
+
+// A command line that is not one of the usages: one line saying what is wrong and how to call
+// ritr, exit code 2.
+TEST(ErrorHandling, CommandLineMisuse)
+{
+  for (const std::string arguments : {"", "a.prm b.prm", "--frobnicate", "a.prm --frobnicate", "--help --resume",
+                                      "--resume", "--print-parameters a.prm"})
+    {
+      const RunResult r = run_ritr(arguments);
+      EXPECT_EQ(r.exit_code, 2) << arguments << ": " << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << arguments << ": " << r.output;
+      EXPECT_EQ(r.output.rfind("ritr: error: ", 0), 0u) << r.output;
+      EXPECT_NE(r.output.find("(usage: ritr SCENE.prm [--resume] | ritr --print-parameters | ritr --help)\n"),
+                std::string::npos)
+        << r.output;
+    }
+  EXPECT_NE(run_ritr("a.prm --frobnicate").output.find("unknown option '--frobnicate'"), std::string::npos);
+  EXPECT_EQ(run_ritr("--help").exit_code, 0);
+}
+
 TEST(ErrorHandling, AdaptivityWithoutPhysicalAdmissibilityNeedsNoContact)
 {
   expect_input_error("adaptivity_joint_contact",
@@ -200,6 +271,48 @@ namespace
 
   const std::string triangle_nodes = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n";
   const std::string triangle_cells = "$EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n";
+
+  // A second body or obstacle of the small scene (whose strip spans [0, 1] x [0.01, 0.21]).
+  std::string second_body(const std::string &lines)
+  {
+    return "subsection Body 1\n set enabled = true\n" + lines + "\nend\n";
+  }
+  std::string second_obstacle(const std::string &lines) { return "subsection Obstacle 1\n" + lines + "\nend\n"; }
+
+  // A gmsh 2.2 file of `nodes` ("tag x y z" lines) and `elements` ("tag type 2 0 1 nodes..." lines).
+  std::string gmsh(const std::vector<std::string> &nodes, const std::vector<std::string> &elements)
+  {
+    std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + std::to_string(nodes.size()) + "\n";
+    for (const auto &n : nodes)
+      text += n + "\n";
+    text += "$EndNodes\n$Elements\n" + std::to_string(elements.size()) + "\n";
+    for (const auto &e : elements)
+      text += e + "\n";
+    return text + "$EndElements\n";
+  }
+
+  // A rod read from rod.msh above a wall at x = -1.
+  const std::string rod_scene = "set dimension = 1\nset time step = 0.01\nset end time = 0.02\n"
+                                "set output directory = OUTPUT\n"
+                                "subsection Body 0\n set shape = file\n set file = rod.msh\nend\n"
+                                "subsection Obstacle 0\n set type = plane\n set point = -1\n set normal = 1\nend\n";
+
+  // A 3D block above the obstacle surface shape.obj.
+  const std::string obj_scene = "set dimension = 3\nset time step = 0.01\nset end time = 0.02\n"
+                                "set output directory = OUTPUT\n"
+                                "subsection Body 0\n set shape = box\n set upper = 1, 0.2, 1\n"
+                                " set translation = 0, 0.5, 0\nend\n"
+                                "subsection Obstacle 0\n set type = file\n set file = shape.obj\nend\n";
+  // The 2D strip above the obstacle polyline shape.obj.
+  const std::string obj_scene_2d =
+    replaced(small_scene, "set type = plane\n  set point = 0, 0", "set type = file\n  set file = shape.obj");
+  const std::string a_triangle = "v 0 0 0\nv 1 0 0\nv 0 0 1\n";
+
+  // A 3D scene: a ball of radius 0.5 at (0, 0.8, 0), without obstacles.
+  const std::string ball_scene = "set dimension = 3\nset time step = 0.01\nset end time = 0.02\n"
+                                 "set output directory = OUTPUT\n"
+                                 "subsection Body 0\n set shape = ball\n set center = 0, 0.8, 0\n set radius = 0.5\n"
+                                 " set shape refinements = 0\nend\n";
 
   std::vector<BadInput> bad_inputs()
   {
@@ -293,6 +406,85 @@ namespace
         .with("folded.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n"
                             "4 0 1 0\n5 0.9 0.5 0\n$EndNodes\n$Elements\n3\n1 2 2 0 1 1 2 3\n2 2 2 0 1 1 3 4\n"
                             "3 2 2 0 1 1 3 5\n$EndElements\n"),
+      // The initial state is free of intersections: nothing inside a body or a closed obstacle,
+      // found by inside tests since no boundary crosses; each named.
+      appended("obstacle_inside_body", "the initial configuration intersects: Obstacle 1 lies inside Body 0",
+               second_obstacle(" set type = box\n set point = 0.5, 0.1\n set size = 0.05, 0.05")),
+      appended("body_inside_body", "the initial configuration intersects: Body 1 lies inside Body 0",
+               second_body(" set lower = 0.4, 0.05\n set upper = 0.6, 0.15")),
+      appended("spikes_inside_body", "the initial configuration intersects: Obstacle 1 lies inside Body 0",
+               second_obstacle(" set type = spikes\n set point = 0.5, 0.05\n set size = 0.2\n set count = 3\n"
+                               " set spike height = 0.05")),
+      appended("body_inside_closed_obstacle", "the initial configuration intersects: Body 1 lies inside Obstacle 1",
+               second_obstacle(" set type = box\n set point = 3, 0.5\n set size = 1, 1") +
+                 second_body(" set lower = 2.9, 0.4\n set upper = 3.1, 0.6")),
+      whole("obstacle_inside_ball", "the initial configuration intersects: Obstacle 0 lies inside Body 0",
+            ball_scene + "subsection Obstacle 0\n set type = box\n set point = 0, 0.8, 0\n set size = 0.1, 0.1, 0.1\nend\n"),
+      whole("ball_inside_ball", "the initial configuration intersects: Body 1 lies inside Body 0",
+            ball_scene + "subsection Body 1\n set enabled = true\n set shape = ball\n set center = 0.05, 0.8, 0\n"
+                         " set radius = 0.1\n set shape refinements = 0\nend\n"),
+      edited("crossing_named", "the initial configuration intersects: Body 0 and Obstacle 0 overlap or touch",
+             "set translation = 0, 0.01", "set translation = 0, -0.05"),
+      // 1D meshes get the mesh checks of 2D and 3D.
+      whole("rod_duplicated_segment", "rod.msh' has a duplicated segment: element 3 repeats the nodes of element 2",
+            rod_scene)
+        .with("rod.msh", gmsh({"1 0 0 0", "2 0.5 0 0", "3 1 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 3", "3 1 2 0 1 3 2"})),
+      whole("rod_folded", "Body 0: the mesh has inverted (folded) elements", rod_scene)
+        .with("rod.msh", gmsh({"1 0 0 0", "2 1 0 0", "3 0.5 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 3"})),
+      edited("triangle_duplicated", "has a duplicated triangle: element 3 repeats the nodes of element 1", file_body,
+             "set shape = file\n set file = twice.msh")
+        .with("twice.msh", gmsh({"1 0 0 0", "2 1 0 0", "3 1 1 0", "4 0 1 0"},
+                                {"1 2 2 0 1 1 2 3", "2 2 2 0 1 1 3 4", "3 2 2 0 1 3 1 2"})),
+      whole("tetrahedron_duplicated", "has a duplicated tetrahedron: element 2 repeats the nodes of element 1",
+            replaced(ball_scene, " set shape = ball", " set shape = file\n set file = twice.msh"))
+        .with("twice.msh", gmsh({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0 0 1"}, {"1 4 2 0 1 1 2 3 4", "2 4 2 0 1 4 3 2 1"})),
+      // .obj obstacles: every coordinate a finite number, every index a vertex, every element
+      // with a length or area; the file and line named.
+      whole("obj_missing_coordinate", "shape.obj:2: a vertex needs 3 coordinates, this one has 2", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0\nv 0 0 1\nf 1 2 3\n"),
+      whole("obj_nan_coordinate", "shape.obj:2: vertex coordinate 'nan' is not a finite number", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0 nan\nv 0 0 1\nf 1 2 3\n"),
+      whole("obj_word_coordinate", "shape.obj:3: vertex coordinate 'abc' is not a number", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0 0\nv 0 0 abc\nf 1 2 3\n"),
+      whole("obj_huge_coordinate", "shape.obj:1: vertex coordinate '1e400' is not a finite number", obj_scene)
+        .with("shape.obj", "v 1e400 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n"),
+      whole("obj_zero_area", "shape.obj:4: a triangle of zero area", obj_scene)
+        .with("shape.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"),
+      whole("obj_repeated_index", "shape.obj:4: a triangle of zero area", obj_scene).with("shape.obj", a_triangle + "f 1 1 2\n"),
+      whole("obj_index_not_a_number", "shape.obj:4: vertex index 'x' is not an integer", obj_scene)
+        .with("shape.obj", a_triangle + "f 1 2 x\n"),
+      whole("obj_index_out_of_range", "shape.obj:4: vertex index '7' names no vertex", obj_scene)
+        .with("shape.obj", a_triangle + "f 1 2 7\n"),
+      whole("obj_quad", "shape.obj:5: a face needs 3 vertices", obj_scene)
+        .with("shape.obj", a_triangle + "v 1 0 1\nf 1 2 4 3\n"),
+      BadInput{"obj_zero_segment", "shape.obj:3: a segment of zero length", obj_scene_2d,
+               {{"shape.obj", "v -1 0\nv -1 0\nl 1 2\n"}}},
+      BadInput{"msh_obstacle_zero_segment", "shape.msh' has a segment of zero length (segment 2)",
+               replaced(obj_scene_2d, "shape.obj", "shape.msh"),
+               {{"shape.msh", gmsh({"1 -1 0 0", "2 2 0 0", "3 2 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 3"})}}},
+      BadInput{"msh_obstacle_repeated_node", "shape.msh' has a segment of zero length (segment 2)",
+               replaced(obj_scene_2d, "shape.obj", "shape.msh"),
+               {{"shape.msh", gmsh({"1 -1 0 0", "2 2 0 0"}, {"1 1 2 0 1 1 2", "2 1 2 0 1 2 2"})}}},
+      // Obstacle motions that define nothing.
+      appended("plane_normal_zero", "scene.prm:19: Obstacle 0/normal: must be a nonzero direction", obstacle(" set normal = 0, 0")),
+      whole("rotation_axis_zero", "Obstacle 0/rotation axis: must be a nonzero direction",
+            replaced(obj_scene, "set file = shape.obj", "set type = plane\n set rotation axis = 0, 0, 0\n"
+                                                        " set rotation angle = t")),
+      // Sizes that cannot fit in memory are refused up front, with the numbers.
+      whole("refinements_bomb", "Body 0: 20 x 20 x 20 subdivisions and 8 refinements make 6.7e+11 cells, which need",
+            replaced(ball_scene, " set shape = ball", " set shape = box\n set subdivisions = 20, 20, 20\n set refinements = 8")),
+      edited("subdivisions_bomb", "Body 0: 100000000 x 100000000 subdivisions and 0 refinements make 2e+16 cells",
+             "set subdivisions = 4, 1", "set subdivisions = 100000000, 100000000"),
+      whole("shape_refinements_bomb", "Body 0: 8 shape refinements and 8 refinements make",
+            replaced(ball_scene, "set shape refinements = 0", "set shape refinements = 8\n set refinements = 8")),
+      appended("spike_count_bomb", "Obstacle 0/count: 2000000000 spikes make 4e+09 segments, which need at least",
+               obstacle(" set type = spikes\n set count = 2000000000")),
+      // Numbers a pattern lets through but a double cannot hold, with their line.
+      appended("epsilon_r_denormal", "scene.prm:19: Adaptivity/epsilon r",
+               "subsection Adaptivity\n set epsilon r = 4.9e-324\nend\n"),
+      // Coordinates a double cannot compute with.
+      edited("coordinates_near_1e300", "Body 0: has a coordinate of 1e+300; coordinates must stay below",
+             "set translation = 0, 0.01", "set translation = 1e300, 0.01"),
       // deal.II skips the pattern of a value with '{' (its parameter loops).
       appended("brace_in_selection", "mode: '{' is not allowed", "set mode = {static|dynamic}\n"),
       appended("brace_in_integer", "Body 0/material id: '{'", body(" set material id = {")),

@@ -1,7 +1,8 @@
 // A run killed (SIGKILL) at random moments in a directory that held a complete run: every
 // file left is well formed, every .pvd names only files that exist, nothing of the new run
 // sits beside the old run's files, and a summary says "complete": true only when every step
-// is there (the old run, if killed before the new run took the directory over).
+// is there (the old run, if killed before the new run took the directory over). Resumed, the
+// killed run ends complete, whatever moment the kill came at.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -10,9 +11,6 @@
 #include <random>
 #include <regex>
 #include <thread>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include "run_ritr.h"
 
@@ -31,22 +29,6 @@ namespace
   bool ends_with(const std::string &s, const std::string &end)
   {
     return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
-  }
-
-  // Starts ritr on the scene with its output discarded; returns its process id.
-  pid_t start_ritr()
-  {
-    const std::string binary = ritr_binary();  // before fork: the child only calls exec
-    const pid_t       pid    = fork();
-    if (pid == 0)
-      {
-        const int null = open("/dev/null", O_WRONLY);
-        dup2(null, 1);
-        dup2(null, 2);
-        execl(binary.c_str(), "ritr", scene.c_str(), static_cast<char *>(nullptr));
-        _exit(127);
-      }
-    return pid;
   }
 
   // The files of a snapshot without temporaries (a temporary may be torn; the next run
@@ -112,6 +94,36 @@ namespace
             }
         }
   }
+
+  // Resumes what a kill left: the run ends complete, as a run that was never stopped would --
+  // every step in log.csv, every frame its collections name in place, the summary with its
+  // energy terms -- unless the kill came before the run's first checkpoint (nothing to resume
+  // from) or before it took the directory over (the old run, complete, is left alone).
+  void check_resumed_run()
+  {
+    const RunResult r = run_ritr(scene + " --resume");
+    if (r.exit_code == 2)
+      {
+        EXPECT_NE(r.output.find("checkpoint.bin: no checkpoint to resume from"), std::string::npos) << r.output;
+        return;
+      }
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::string summary = read_file(output + "/summary.json");
+    EXPECT_NE(summary.find("\"complete\": true"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("\"final_energy_terms\": {\""), std::string::npos) << summary;
+    const std::string log = read_file(output + "/log.csv");
+    EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 31) << "30 steps and the header";
+    for (const char *pvd : {"/solution.pvd", "/reference.pvd", "/obstacles.pvd"})
+      {
+        const std::string text = read_file(output + pvd);
+        const std::regex  dataset("file=\"([^\"]+)\"");
+        unsigned int      frames = 0;
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset); it != std::sregex_iterator(); ++it, ++frames)
+          EXPECT_TRUE(fs::exists(output + "/" + (*it)[1].str())) << pvd << " names a missing " << (*it)[1];
+        EXPECT_EQ(frames, 31u) << pvd;
+      }
+    EXPECT_FALSE(fs::exists(output + "/ritr.lock"));
+  }
 } // namespace
 
 TEST(KilledRun, LeavesWellFormedFilesAndNoFalseClaimOfCompletion)
@@ -138,11 +150,12 @@ TEST(KilledRun, LeavesWellFormedFilesAndNoFalseClaimOfCompletion)
       for (const auto &[path, text] : old_run)
         write_file(path, text);
       const double at  = moment(random);
-      const pid_t  pid = start_ritr();
+      const pid_t  pid = start_ritr({scene});
       std::this_thread::sleep_for(std::chrono::duration<double>(at));
       kill(pid, SIGKILL);
       waitpid(pid, nullptr, 0);
       SCOPED_TRACE("killed after " + std::to_string(at) + " s");
       check_left_files(old_run);
+      check_resumed_run();
     }
 }

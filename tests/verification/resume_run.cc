@@ -7,12 +7,10 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <regex>
 #include <thread>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include "run_ritr.h"
 
@@ -65,21 +63,9 @@ namespace
   bool run_and_kill(const std::string &scene, const std::string &output, const unsigned int rows,
                     const bool resume)
   {
-    const std::string binary = ritr_binary();  // before fork: the child only calls exec
-    const pid_t       pid    = fork();
-    if (pid == 0)
-      {
-        const int null = open("/dev/null", O_WRONLY);
-        dup2(null, 1);
-        dup2(null, 2);
-        if (resume)
-          execl(binary.c_str(), "ritr", scene.c_str(), "--resume", static_cast<char *>(nullptr));
-        else
-          execl(binary.c_str(), "ritr", scene.c_str(), static_cast<char *>(nullptr));
-        _exit(127);
-      }
-    int  status = 0;
-    bool ended  = false;
+    const pid_t pid    = resume ? start_ritr({scene, "--resume"}) : start_ritr({scene});
+    int         status = 0;
+    bool        ended  = false;
     while (!(ended = waitpid(pid, &status, WNOHANG) == pid) &&
            (log_rows(output) < rows || !fs::exists(output + "/checkpoint.bin")))
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -198,6 +184,28 @@ TEST(ResumeRun, KilledAndResumedRunMatchesTheUninterruptedOne)
 
 namespace
 {
+  // 64-bit FNV-1a, the checkpoint's checksum.
+  std::uint64_t fnv1a(const std::string &bytes)
+  {
+    std::uint64_t hash = 14695981039346656037ull;
+    for (const unsigned char c : bytes)
+      hash = (hash ^ c) * 1099511628211ull;
+    return hash;
+  }
+
+  // `checkpoint` with its time replaced and its checksum recomputed. The layout: a 24-byte
+  // header ("RITRCKPT", version, byte-order mark, payload size), then the payload -- u32
+  // dimension, u64 scene fingerprint, u32 step, f64 time, ... -- and the checksum of the
+  // payload in its last 8 bytes.
+  std::string with_time(std::string checkpoint, const double time)
+  {
+    constexpr std::size_t header = 24, time_at = header + 4 + 8 + 4;
+    std::memcpy(&checkpoint[time_at], &time, sizeof(time));
+    const std::uint64_t checksum = fnv1a(checkpoint.substr(header, checkpoint.size() - header - 8));
+    std::memcpy(&checkpoint[checkpoint.size() - 8], &checksum, sizeof(checksum));
+    return checkpoint;
+  }
+
   // Resumes `scene` whose output directory holds `checkpoint` (none if empty): one line
   // naming the checkpoint with `words`, exit code 2, no file touched.
   void expect_refused(const std::string &name, const std::string &scene_text, const std::string &checkpoint,
@@ -235,6 +243,11 @@ TEST(ResumeRun, RefusesMissingDamagedOrForeignCheckpoints)
   flipped[flipped.size() / 2] ^= 0x10;
   expect_refused("bad/corrupted", small_scene, flipped, "corrupted");
   expect_refused("bad/not_a_checkpoint", small_scene, "step,time\n1,0.01\n", "not a ritr checkpoint");
+  // Contents no run writes, under a checksum that matches them.
+  expect_refused("bad/time_nan", small_scene, with_time(checkpoint, std::nan("")),
+                 "is corrupted (its time is not a finite time)");
+  expect_refused("bad/time_not_its_steps", small_scene, with_time(checkpoint, 0.015),
+                 "is corrupted (its time is not its last step's)");
   expect_refused("bad/other_scene", replaced(small_scene, "set dhat = 1e-3", "set dhat = 2e-3"), checkpoint,
                  "another scene");
   // The same scene with its outputs elsewhere, run on another number of threads, is the
@@ -247,4 +260,65 @@ TEST(ResumeRun, RefusesMissingDamagedOrForeignCheckpoints)
   const RunResult r = run_ritr(write_scene("bad/moved", moved_scene) + " --resume");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("already complete"), std::string::npos) << r.output;
+}
+
+namespace
+{
+  // A finished run of the small scene in `output`, turned into what a run killed after its
+  // last checkpoint but before its summary leaves: the summary of its start, which says
+  // "complete": false. Returns the scene file.
+  std::string killed_before_its_summary(const std::string &name, const std::string &output)
+  {
+    fs::remove_all(output);
+    const std::string scene = write_scene(name, replaced(small_scene, "OUTPUT", output));
+    const RunResult   r     = run_ritr(scene);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    write_file(output + "/summary.json", "{\n  \"complete\": false,\n  \"steps\": 0\n}\n");
+    return scene;
+  }
+} // namespace
+
+// A run killed between its last checkpoint and its summary has every step done: resumed, it
+// writes the summary the finished run would have written, energy terms included.
+TEST(ResumeRun, RunKilledBeforeItsSummaryEndsWithItsEnergyTerms)
+{
+  fs::create_directories(folder);
+  const std::string output = folder + "/before_summary";
+  const std::string scene  = killed_before_its_summary("before_summary", output);
+  const RunResult   whole  = run_ritr(write_scene("whole_small", replaced(small_scene, "OUTPUT", folder + "/whole_small")));
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+
+  const RunResult r = run_ritr(scene + " --resume");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("resuming after step 2/2"), std::string::npos) << r.output;
+  EXPECT_EQ(summary_entry(output, "complete"), "true");
+  const std::string terms = "\"final_energy_terms\": \\{[^}]*\\}";
+  std::smatch       resumed, uninterrupted;
+  const std::string resumed_text = read_file(output + "/summary.json"), whole_text = read_file(folder + "/whole_small/summary.json");
+  ASSERT_TRUE(std::regex_search(resumed_text, resumed, std::regex(terms))) << resumed_text;
+  ASSERT_TRUE(std::regex_search(whole_text, uninterrupted, std::regex(terms))) << whole_text;
+  EXPECT_EQ(resumed.str(), uninterrupted.str());
+}
+
+// The frames a checkpoint builds on must be there: a resume that would end "complete" with
+// collections naming missing files is refused with one line naming the first, touching nothing.
+TEST(ResumeRun, RefusesWhenFramesItBuildsOnAreMissing)
+{
+  fs::create_directories(folder);
+  for (const std::string missing : {"solution-00002.vtu", "reference-00002.vtu", "obstacles-00001.vtu"})
+    {
+      const std::string output = folder + "/missing_" + missing.substr(0, missing.find('.'));
+      const std::string scene  = killed_before_its_summary("missing_frame", output);
+      fs::remove(output + "/" + missing);
+      const auto      before = snapshot(output);
+      const RunResult r      = run_ritr(scene + " --resume");
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_EQ(r.output.rfind("ritr: error: " + output + "/" + missing + ": is missing, and " + output +
+                                 "/checkpoint.bin builds on it",
+                               0),
+                0u)
+        << r.output;
+      EXPECT_EQ(snapshot(output), before) << missing;
+    }
 }

@@ -14,6 +14,8 @@
 #include <ritr/common/triplets.h>
 #include <ritr/mesh/simplex_mesh.h>
 
+#include <array>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -53,6 +55,10 @@ namespace ritr
     double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
     double minimum_distance(const Eigen::VectorXd &z) const;  // over all primitive pairs
     bool   has_intersections(const Eigen::VectorXd &z) const;  // crossing primitives
+    // For naming what overlaps at z: a state vertex of each of two crossing primitives, or of
+    // two primitives closer than `distance`; nothing when there are none.
+    std::optional<std::array<int, 2>> crossing_vertices(const Eigen::VectorXd &z) const;
+    std::optional<std::array<int, 2>> vertices_closer_than(const Eigen::VectorXd &z, double distance) const;
     // Over the candidates' pairs within dhat.
     double active_minimum_distance(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
     double bbox_diagonal(const Eigen::VectorXd &z) const;

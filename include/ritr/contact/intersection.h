@@ -6,6 +6,9 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <optional>
+
 namespace ritr::contact
 {
   // True when two non-adjacent primitives (not both obstacle) intersect: in 1D a vertex
@@ -14,4 +17,9 @@ namespace ritr::contact
   // the interval each body vertex bounds.
   template <int dim>
   bool has_intersections(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V);
+
+  // The first two intersecting primitives found as above, each given by one of its
+  // vertices (to name what intersects), or nothing.
+  template <int dim>
+  std::optional<std::array<int, 2>> find_intersection(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V);
 } // namespace ritr::contact

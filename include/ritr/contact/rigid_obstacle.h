@@ -40,8 +40,10 @@ namespace ritr::contact
   template <int dim>
   RigidObstacle<dim> make_spikes(const Eigen::Matrix<double, dim, 1> &base_center, double length,
                                  unsigned int count, double height);
-  // Wavefront .obj: 'v' vertices, 'f' triangles (3D) or 'l' segments (2D). Throws
-  // std::runtime_error naming the file and line on malformed input.
+
+  // The index of the first segment (2D) or triangle (3D) of `obstacle` without a length or an
+  // area -- shorter than 1e-12 of the obstacle's extent, or of an area below 1e-12 of its
+  // longest edge squared -- or -1 when every one has: contact needs a direction on each.
   template <int dim>
-  RigidObstacle<dim> read_obj(const std::string &file);
+  int first_degenerate_element(const RigidObstacle<dim> &obstacle);
 } // namespace ritr::contact

@@ -3,6 +3,7 @@
 // so that `ritr SCENE.prm --resume` continues a killed run from its last frame. Doubles are
 // stored raw, so a resumed run repeats the uninterrupted one bit for bit; a checksum catches
 // torn or damaged files, and the file is written atomically like every other output.
+#include <ritr/common/input_error.h>
 #include <ritr/time/step_report.h>
 
 #include <Eigen/Core>
@@ -10,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ritr
@@ -26,6 +28,9 @@ namespace ritr
     // One report per step done: log.csv is rewritten from them, summary.json adds them up.
     std::vector<StepReport>  history;
     std::vector<std::string> invariant_violations;
+    // The last step's energy term by term (summary.json's final_energy_terms), once the run
+    // has made its last step; empty before.
+    std::vector<std::pair<std::string, double>> final_energy_terms;
     // Totals of summary.json that no step report holds, over the run so far.
     double        wall_seconds = 0, output_seconds = 0, linear_solve_seconds = 0;
     std::uint64_t symbolic_factorizations = 0, numeric_factorizations = 0;
@@ -34,8 +39,12 @@ namespace ritr
   // Writes `checkpoint` to `path` atomically (temporary name, then rename).
   void write_checkpoint(const std::string &path, const Checkpoint &checkpoint);
 
+  // The refusal to resume when there is no checkpoint at `path`.
+  InputError no_checkpoint_error(const std::string &path);
+
   // Reads a checkpoint; throws InputError naming the file and what is wrong with it (missing,
-  // not a checkpoint, another format version, truncated, corrupted).
+  // not a checkpoint, another format version, truncated, corrupted, or contents that no run
+  // writes: a state or time that is not finite, step reports out of order).
   Checkpoint read_checkpoint(const std::string &path);
 
   // 64-bit FNV-1a of `bytes` bytes, continuing from `hash` (fingerprints, not security).

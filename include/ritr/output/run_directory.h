@@ -39,8 +39,8 @@ namespace ritr
   };
 
   // Removes the previous run's outputs and stale temporaries except summary.json, which the
-  // new run has already replaced. The .pvd collections go first, so that none names a
-  // removed file.
+  // new run has already replaced. The checkpoint goes first, so that no resume builds on
+  // frames that are going, then the .pvd collections, so that none names a removed file.
   void remove_previous_outputs(const std::filesystem::path &directory);
 
   // A resumed run's clean-up: removes the per-frame files of steps after `step` (a killed

@@ -46,9 +46,10 @@ namespace ritr
     Eigen::VectorXd initial_reference, initial_positions, initial_velocity, initial_obstacle_positions;
 
     // The prescribed state entries at time t (Dirichlet nodes, then obstacle vertices; other
-    // entries zero).
+    // entries zero). Throws InputError naming the expression that is not finite at t.
     Eigen::VectorXd targets(double t) const;
-    // The body force per unit mass at time t, load factor applied.
+    // The body force per unit mass at time t, load factor applied; throws InputError when the
+    // load factor is not finite at t.
     std::array<double, dim> gravity(double t) const;
     // The rule that integrates r-adaptivity's L2 transfer on candidate cells.
     SimplexQuadrature<dim> transfer_quadrature() const;
@@ -67,10 +68,18 @@ namespace ritr
     void build_dirichlet_conditions();
     void build_contact();
     void build_terms();
-    void check_initial_state() const;
+    // initial_state.cc: the initial state's checks, each naming the body or obstacle at fault.
+    void        check_initial_state() const;
+    void        check_coordinates() const;
+    void        check_element_measures() const;
+    void        check_separation(const Eigen::VectorXd &z) const;      // crossing or touching
+    void        check_nothing_inside(const Eigen::VectorXd &z) const;  // inside a body or closed obstacle
+    // The .prm subsection ("Body 1", "Obstacle 0") of a vertex of the state z.
+    std::string name_of_state_vertex(int vertex) const;
 
     std::vector<std::pair<unsigned int, unsigned int>> dirichlet_nodes_;  // node, condition
     std::vector<Expression<dim>>                       dirichlet_displacements_;
+    std::vector<std::string>                           dirichlet_entries_;  // "FILE:LINE: Dirichlet 0/displacement"
     std::optional<Expression<dim>>                     load_factor_;
   };
 

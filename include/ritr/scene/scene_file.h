@@ -20,6 +20,9 @@ namespace ritr
   SceneFile read_scene_file(const std::string &file);
 
   // deal.II's "Line <3> of file <f>: The entry value\n  ...\n  for the entry named ..." as
-  // "f:3: The entry value ... for the entry named ...", each echoed piece shortened.
-  std::string fold_parser_message(const std::string &message, const std::string &file);
+  // "f:3: The entry value ... for the entry named ...", each echoed piece shortened. A message
+  // without a line that names an entry ("... for entry <epsilon r> ...", a value its
+  // pattern let through but that does not convert) gets the line and path of the one entry
+  // of that name `scene` sets.
+  std::string fold_parser_message(const std::string &message, const std::string &file, const SceneFile &scene = {});
 } // namespace ritr

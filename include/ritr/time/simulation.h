@@ -3,6 +3,7 @@
 // step from a Stepper (fixed mesh or r-adaptive), the checks after it from the
 // InvariantChecker; the outputs of the output contract are written after every step, and
 // with every VTU frame a checkpoint that resume() continues from.
+#include <ritr/output/directory_lock.h>
 #include <ritr/output/run_directory.h>
 #include <ritr/problem/problem.h>
 #include <ritr/time/invariants.h>
@@ -21,6 +22,12 @@ namespace ritr
     // Builds everything and checks the initial state; throws InputError on bad input.
     explicit Simulation(const Scene &scene);
     ~Simulation();
+
+    // Takes the scene's output directory for this process (creating it for a new run): no
+    // other run can write there until this simulation ends. run() and resume() take it
+    // themselves; taken earlier, a refusal comes before anything is printed. Throws
+    // InputError naming the directory, and the process that holds it.
+    void claim_output_directory(bool resuming);
 
     // Runs all steps and writes the outputs; throws ConvergenceError.
     void run();
@@ -61,6 +68,8 @@ namespace ritr
     void flush_logs() const;
     // checkpoint.bin for the state after step_ (simulation_resume.cc).
     void write_checkpoint() const;
+    // The per-frame files of the frames up to `last_step`, as named in the output directory.
+    std::vector<std::string> frame_files(unsigned int last_step) const;
     // Identifies the scene a checkpoint belongs to: its parameters and its initial mesh.
     std::uint64_t scene_fingerprint() const;
     // Wall time of the run so far, over every process that ran a part of it.
@@ -86,6 +95,7 @@ namespace ritr
     std::vector<StepReport>                    history_;
     std::vector<std::string>                   invariant_violations_;
     std::vector<std::pair<std::string, double>> last_step_terms_;  // summary.json's final_energy_terms, at the end
+    std::unique_ptr<OutputDirectoryLock>       directory_lock_;  // claim_output_directory()
     std::unique_ptr<RunOutputs>                outputs_;
     unsigned int                               logged_step_ = 0, logged_solve_ = 0;
     std::uint64_t                              scene_hash_ = 0;  // scene_fingerprint()
