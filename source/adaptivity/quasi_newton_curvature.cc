@@ -1,6 +1,8 @@
 #include <ritr/adaptivity/quasi_newton_curvature.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace ritr
 {
@@ -41,6 +43,33 @@ namespace ritr
             q.sy               = q.s.dot(q.y);
           }
       }
+  }
+
+  Eigen::VectorXd QuasiNewtonCurvature::state() const
+  {
+    const Eigen::Index n = pairs_.empty() ? 0 : pairs_.front().s.size();
+    Eigen::VectorXd    state(1 + 2 * n * pairs_.size());
+    state[0] = sigma_;
+    for (std::size_t i = 0; i < pairs_.size(); ++i)
+      state.segment(1 + 2 * n * i, 2 * n) << pairs_[i].s, pairs_[i].measured;
+    return state;
+  }
+
+  void QuasiNewtonCurvature::restore(const Eigen::VectorXd &state, const Eigen::Index n)
+  {
+    const bool fits = n > 0 ? state.size() >= 1 && (state.size() - 1) % (2 * n) == 0 &&
+                                static_cast<unsigned int>((state.size() - 1) / (2 * n)) <= memory_ :
+                              state.size() == 1;
+    if (!fits)
+      throw std::invalid_argument("not a quasi-Newton curvature of " + std::to_string(n) + " unknowns");
+    pairs_.clear();
+    for (Eigen::Index offset = 1; offset < state.size(); offset += 2 * n)
+      {
+        const Eigen::VectorXd s = state.segment(offset, n), y = state.segment(offset + n, n);
+        pairs_.push_back({s, y, y, Eigen::VectorXd(), s.dot(y), 0.0});
+      }
+    sigma_ = state[0];
+    rebuild();
   }
 
   bool QuasiNewtonCurvature::update(const Eigen::VectorXd &s, const Eigen::VectorXd &y)

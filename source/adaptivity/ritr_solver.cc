@@ -234,6 +234,24 @@ namespace ritr
   }
 
   template <int dim>
+  Eigen::VectorXd RitrSolver<dim>::carried_state() const
+  {
+    const Eigen::VectorXd curvature = quasi_newton_.state();
+    Eigen::VectorXd       state(1 + curvature.size());
+    state << carried_radius_, curvature;
+    return state;
+  }
+
+  template <int dim>
+  void RitrSolver<dim>::restore_carried_state(const Eigen::VectorXd &state)
+  {
+    if (state.size() < 1)
+      throw std::invalid_argument("no r-ITR solver state");
+    carried_radius_ = state[0];
+    quasi_newton_.restore(state.tail(state.size() - 1), basis_.cols());
+  }
+
+  template <int dim>
   void RitrSolver<dim>::line_search_solve(const Eigen::VectorXd &targets, Result &r)
   {
     const OuterSetting<dim> setting{

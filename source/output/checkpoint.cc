@@ -19,8 +19,9 @@ namespace ritr
   namespace
   {
     constexpr char          magic[8]   = {'R', 'I', 'T', 'R', 'C', 'K', 'P', 'T'};
-    // 2: steps carry the outer stop; 3: the barrier stiffness; 4: the final energy terms
-    constexpr std::uint32_t version    = 4;
+    // 2: steps carry the outer stop; 3: the barrier stiffness; 4: the final energy terms;
+    // 5: the stepper's carried state
+    constexpr std::uint32_t version    = 5;
     constexpr std::uint32_t byte_order = 0x01020304;
     constexpr std::size_t   header_size = sizeof(magic) + 2 * sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -194,6 +195,7 @@ namespace ritr
         payload.put(name);
         payload.put(value);
       }
+    payload.put(c.stepper_state);
 
     Writer file;
     file.bytes.append(magic, sizeof(magic));
@@ -279,6 +281,7 @@ namespace ritr
         name  = r.string();
         value = r.get<double>();
       }
+    c.stepper_state = r.vector();
     if (!r.at_end())
       r.corrupted();
     if (const std::string problem = implausible_contents(c); !problem.empty())

@@ -86,6 +86,7 @@ namespace ritr
     c.history              = history_;
     c.invariant_violations = invariant_violations_;
     c.final_energy_terms   = last_step_terms_;
+    c.stepper_state        = stepper_->carried_state();
     c.wall_seconds         = wall_seconds();
     c.output_seconds       = outputs_->output_seconds;
     c.linear_solve_seconds = earlier_.linear_solve_seconds + newton_solver().seconds_in_linear_solves();
@@ -134,6 +135,14 @@ namespace ritr
       throw InputError(file + ": is corrupted (its sizes do not match the scene)");
     if (c.time > scene_.end_time)
       throw InputError(file + ": is corrupted (its time is past the scene's end time)");
+    try
+      {
+        stepper_->restore_carried_state(c.stepper_state);
+      }
+    catch (const std::invalid_argument &e)
+      {
+        throw InputError(file + ": is corrupted (" + e.what() + ")");
+      }
     if (c.step == n_steps &&
         read_text(directory / "summary.json").find("\"complete\": true") != std::string::npos)
       return false;

@@ -53,6 +53,9 @@ namespace ritr
         this->implicit_step_ = std::move(implicit_step);
       }
 
+      Eigen::VectorXd carried_state() const override { return solver_->carried_state(); }
+      void restore_carried_state(const Eigen::VectorXd &state) override { solver_->restore_carried_state(state); }
+
       StepResult step(const StepContext<dim> &context) override
       {
         typename RitrSolver<dim>::Result r;
@@ -93,11 +96,14 @@ namespace ritr
   {
     const AdaptivityScene &a = problem.scene.adaptivity;
     RitrSettings           settings;
-    settings.hessian                 = a.hessian;
+    const bool dynamic               = problem.scene.dynamic();
+    settings.hessian                 = a.hessian != RitrHessian::automatic ? a.hessian :
+                                       dynamic                             ? RitrHessian::quasi_newton :
+                                                                             RitrHessian::reduced;
     settings.geometric_admissibility = a.admissibility == Admissibility::geometric || a.admissibility == Admissibility::both;
     settings.physical_admissibility  = a.admissibility == Admissibility::physical || a.admissibility == Admissibility::both;
     settings.sliding_tolerance         = a.sliding_tolerance;
-    settings.max_outer_iterations      = a.max_iterations;
+    settings.max_outer_iterations      = a.max_iterations > 0 ? a.max_iterations : dynamic ? 1 : 100;
     settings.decrease_tolerance = a.decrease_tolerance > 0 ? a.decrease_tolerance : std::sqrt(a.epsilon_r);
     settings.inner_tolerance_factor = a.inner_tolerance_factor;
     settings.trial_iterations       = a.trial_iterations;

@@ -43,7 +43,8 @@ namespace
     {
       RitrSettings settings       = ritr_settings(*problem);
       settings.hessian            = hessian;
-      settings.decrease_tolerance = 0;
+      settings.decrease_tolerance   = 0;
+      settings.max_outer_iterations = 1000;
       RitrSolver<dim> solver(*problem->materials, *inner, settings, problem->transfer_quadrature());
       return solver.step(step);
     }

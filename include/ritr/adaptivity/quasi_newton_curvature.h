@@ -31,6 +31,11 @@ namespace ritr
     double sigma() const { return sigma_; }
     void   set_scale(const double sigma) { sigma_ = sigma; }
 
+    // The approximation as numbers (sigma, then each pair's s and measured y), and back for
+    // vectors of n entries; restore throws std::invalid_argument for numbers it cannot be.
+    Eigen::VectorXd state() const;
+    void            restore(const Eigen::VectorXd &state, Eigen::Index n);
+
     // The barrier Hessian the products include (none: an empty matrix).
     void with_barrier(const Eigen::SparseMatrix<double> &barrier_hessian) { barrier_ = barrier_hessian; }
 

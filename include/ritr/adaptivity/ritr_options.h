@@ -23,9 +23,13 @@ namespace ritr
   // same trust-region iteration on first derivatives alone: the reduced gradient is the
   // partial derivative of R in u at the solved state, and its curvature a limited-memory BFGS
   // approximation (quasi_newton_curvature.h); an outer iteration then costs about one warm
-  // inner solve.
+  // inner solve. `automatic`, a scene's default, is resolved by ritr_settings() (time/stepper.h):
+  // quasi-newton in dynamics, where the optimal mesh moves little from one step to the next and
+  // one cheap outer iteration per step buys the most accuracy per second (doc/benchmarks.md,
+  // time to accuracy), and reduced in statics, where every load step needs its mesh converged.
   enum class RitrHessian
   {
+    automatic,
     truncated,
     full,
     filtered,
@@ -64,7 +68,8 @@ namespace ritr
     {{TransferIntegrationChoice::automatic, "auto"},
      {TransferIntegrationChoice::exact, "exact"},
      {TransferIntegrationChoice::quadrature, "quadrature"}}};
-  inline constexpr EnumNames<RitrHessian, 5> ritr_hessian_names{{{RitrHessian::truncated, "truncated"},
+  inline constexpr EnumNames<RitrHessian, 6> ritr_hessian_names{{{RitrHessian::automatic, "auto"},
+                                                                  {RitrHessian::truncated, "truncated"},
                                                                   {RitrHessian::full, "full"},
                                                                   {RitrHessian::filtered, "filtered"},
                                                                   {RitrHessian::reduced, "reduced"},
@@ -79,7 +84,7 @@ namespace ritr
                                                                     {Admissibility::physical, "physical"},
                                                                     {Admissibility::both, "both"}}};
 
-  RitrHessian         ritr_hessian_from(const std::string &name);          // truncated|full|filtered|reduced|quasi-newton
+  RitrHessian         ritr_hessian_from(const std::string &name);          // auto|truncated|full|filtered|reduced|quasi-newton
   InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected
   PredictorProjection predictor_projection_from(const std::string &name);  // in-|after-optimization
   Admissibility       admissibility_from(const std::string &name);         // none|geometric|physical|both

@@ -91,6 +91,12 @@ namespace ritr
     // one load step, v ignored).
     Result step(const StepContext<dim> &step);
 
+    // What the solver carries from one step to the next (the trust region's radius and the
+    // quasi-Newton curvature), for checkpoints; restore throws std::invalid_argument for a
+    // state of another mesh.
+    Eigen::VectorXd carried_state() const;
+    void            restore_carried_state(const Eigen::VectorXd &state);
+
   private:
     // The paper's outer Newton with a line search on R (truncated, full or filtered Hessian),
     // or without physical admissibility the joint one over (x, u): line_search_outer.h.

@@ -31,6 +31,9 @@ namespace ritr
     // The last step's energy term by term (summary.json's final_energy_terms), once the run
     // has made its last step; empty before.
     std::vector<std::pair<std::string, double>> final_energy_terms;
+    // What the stepper carries from one step to the next besides the state (Stepper::
+    // carried_state: r-ITR's quasi-Newton curvature and trust region); empty for a fixed mesh.
+    Eigen::VectorXd stepper_state;
     // Totals of summary.json that no step report holds, over the run so far.
     double        wall_seconds = 0, output_seconds = 0, linear_solve_seconds = 0;
     std::uint64_t symbolic_factorizations = 0, numeric_factorizations = 0;

@@ -78,7 +78,7 @@ namespace ritr
   struct AdaptivityScene
   {
     bool        enabled           = false;
-    RitrHessian         hessian       = RitrHessian::reduced;
+    RitrHessian         hessian       = RitrHessian::automatic;
     InertiaForm         inertia       = InertiaForm::corrected;
     PredictorProjection projection    = PredictorProjection::in_optimization;
     Admissibility       admissibility = Admissibility::both;
@@ -90,7 +90,7 @@ namespace ritr
     double      measure_barrier_stiffness = 0;    // 0: automatic
     unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic
     TransferIntegrationChoice transfer_integration = TransferIntegrationChoice::automatic;
-    unsigned    max_iterations    = 100;
+    unsigned    max_iterations    = 0;    // 0: 1 in dynamics, 100 in statics
 
     // Subsection Adaptivity: its entries declared with this struct's values as defaults, and
     // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.

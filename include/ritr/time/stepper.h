@@ -9,6 +9,7 @@
 #include <ritr/time/step_report.h>
 
 #include <memory>
+#include <stdexcept>
 
 namespace ritr
 {
@@ -31,6 +32,16 @@ namespace ritr
     virtual ~Stepper() = default;
     // Throws ConvergenceError when the step cannot be solved.
     virtual StepResult step(const StepContext<dim> &context) = 0;
+    // What the stepper carries from one step to the next besides the state (the checkpoint
+    // keeps it, so that a resumed run repeats the uninterrupted one): nothing on a fixed mesh.
+    virtual Eigen::VectorXd carried_state() const { return {}; }
+    // Takes back what carried_state() gave; throws std::invalid_argument if it cannot be this
+    // stepper's.
+    virtual void restore_carried_state(const Eigen::VectorXd &state)
+    {
+      if (state.size() != 0)
+        throw std::invalid_argument("a fixed-mesh step carries no state");
+    }
     // The Newton solver of the implicit step (linear-solve statistics for the summary).
     const NewtonSolver &newton_solver() const { return implicit_step_->newton(); }
 
