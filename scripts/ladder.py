@@ -6,11 +6,15 @@
 SCENE.prm is the r-ITR run (its `Adaptivity/enabled` is forced on). Fixed rung k is the
 same scene without adaptivity and with every body refined k more times (edge subdivision,
 the paper's ladder); `--fixed-subdivide M` adds rungs between those with every body's
-`subdivisions` multiplied by M. Each run is its own process; wall time and peak resident memory are
-taken from outside it (wait4), and so is the start-up baseline (`ritr --help`), which memory
-ratios subtract. Accuracy is the mean over frames of the Hausdorff distance between deformed
-boundaries (`ritr-compare`) to the finest fixed rung. The headline: the coarsest fixed rung at
-least as accurate as r-ITR, and r-ITR's time and memory ratios to it. With `--accuracy energy`
+`subdivisions` multiplied by M. Each run is its own process; its wall time and peak resident
+memory are taken from outside it (wait4), and so is the start-up baseline (`ritr --help`), which
+memory ratios subtract; time ratios take the runs' own wall times from summary.json, which leave
+out the program's start-up. Accuracy is the mean over frames of the Hausdorff distance between
+deformed boundaries (`ritr-compare`) to the finest fixed rung. The headline: the coarsest fixed
+rung at least as accurate as r-ITR, r-ITR's time and memory ratios to it, and the sentence of
+time to accuracy (scripts/accuracy_front.py): whether r-ITR reaches the accuracy of the finest
+rung it matches in less time, and whether it is faster than a fixed mesh of its accuracy
+interpolated between the rungs. With `--accuracy energy`
 (statics) the runs are ranked by their final energy instead: each minimises the same potential
 over a conforming space of deformations, so the lower equilibrium is the more accurate one.
 
@@ -33,6 +37,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from accuracy_front import verdict  # noqa: E402
 from frame_metrics import centroid_heights, corner_distances, kinetic_energies, lowest_point  # noqa: E402
 from prm_variant import entries, write_variant  # noqa: E402
 
@@ -124,11 +129,18 @@ def fixed_runs(runs):
     return [r for r in runs if not is_ritr(r)]
 
 
+def run_seconds(run):
+    """A run's own wall time (set-up, steps, output) from its summary.json: the program's start-up,
+    the same for every run and most of a small one's process time, is left out."""
+    return run.get("total_wall_seconds", run["wall_seconds"])
+
+
 def cost_ratios(ritr, fixed, baseline_rss):
     memory = lambda r: max(r["peak_rss_bytes"] - baseline_rss, 1)
     return {"matching_fixed": fixed["name"],
             "vertex_ratio": fixed.get("n_vertices", 0) / max(ritr.get("n_vertices", 1), 1),
-            "time_ratio_ritr_to_fixed": ritr["wall_seconds"] / fixed["wall_seconds"],
+            "time_ratio_ritr_to_fixed": run_seconds(ritr) / run_seconds(fixed),
+            "time_note": "the runs' own wall times (summary.json), without the program's start-up",
             "memory_ratio_ritr_to_fixed": memory(ritr) / memory(fixed),
             "memory_note": "peak RSS minus the start-up baseline of `ritr --help`"}
 
@@ -146,7 +158,9 @@ def hausdorff_headline(runs, reference, baseline_rss):
         matching, why = reference, "no coarser fixed rung is as accurate; the reference rung is"
     else:
         why = "coarsest fixed rung with mean Hausdorff <= r-ITR's"
-    return dict(cost_ratios(ritr, matching, baseline_rss), why=why)
+    timed = lambda r: dict(r, seconds=run_seconds(r))
+    return dict(cost_ratios(ritr, matching, baseline_rss), why=why,
+                time_to_accuracy=verdict(timed(ritr), [timed(r) for r in candidates]) if candidates else None)
 
 
 def energy_headline(runs, baseline_rss):
@@ -185,8 +199,11 @@ def summary(result, work):
                 f"r-ITR {ritr['mean_hausdorff']:.2e}, fixed {fixed['mean_hausdorff']:.2e}"
                 if "mean_hausdorff" in ritr and "mean_hausdorff" in fixed else "")
     line = (f"r-ITR on {ritr.get('n_vertices', '?'):,} vertices: energy {ritr.get('final_energy', float('nan')):.6g}, "
-            f"{ritr['wall_seconds']:.1f} s; fixed mesh of the same size: energy "
-            f"{fixed.get('final_energy', float('nan')):.6g}, {fixed['wall_seconds']:.1f} s{accuracy}")
+            f"{run_seconds(ritr):.2f} s; fixed mesh of the same size: energy "
+            f"{fixed.get('final_energy', float('nan')):.6g}, {run_seconds(fixed):.2f} s{accuracy}")
+    verdict_of = result["headline"].get("time_to_accuracy")
+    if verdict_of:
+        line += "\n" + verdict_of["sentence"]
     where = (f"results: {os.path.join(work, 'ritr')} and {os.path.join(work, fixed['name'])} (open solution.pvd and "
              f"reference.pvd in ParaView); pictures: scripts/render.py {os.path.join(work, 'ritr')}")
     return line + "\n" + where

@@ -1,15 +1,21 @@
 #!/usr/bin/env bash
 # Installs the Debian packages ritr needs (only those missing) and builds it (Release,
-# incremental, ccache when available). Usage: scripts/setup.sh [--with-paraview] [BUILD_DIR]
+# incremental, ccache when available).
+# Usage: scripts/setup.sh [--with-paraview] [--programs] [BUILD_DIR]
 # --with-paraview also sets up ParaView's pvbatch for the pictures (scripts/render.py) and
 # their test: about 550 MB and a few minutes more, so only on demand (scripts/test.sh asks).
+# --programs builds only ritr and ritr-compare, not the tests (scripts/run.sh).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 with_paraview=false
-if [ "${1:-}" = "--with-paraview" ]; then
-  with_paraview=true
-  shift
-fi
+targets=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --with-paraview) with_paraview=true; shift ;;
+    --programs) targets=(--target ritr ritr-compare); shift ;;
+    *) break ;;
+  esac
+done
 build="${1:-$root/build}"
 
 packages=(build-essential cmake libdeal.ii-dev libeigen3-dev libsuitesparse-dev libtbb-dev
@@ -46,4 +52,4 @@ fi
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release > "$build/configure.log" 2>&1 ||
   { cat "$build/configure.log"; exit 1; }
-cmake --build "$build" -j "$(nproc)"
+cmake --build "$build" -j "$(nproc)" "${targets[@]}"
