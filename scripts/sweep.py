@@ -11,8 +11,10 @@ frames of the Hausdorff distance between deformed boundaries, `ritr-compare`). T
 are the scene on its own mesh with every combination of the `--vary` values (each
 PATH=V1,V2,...), `--set` applying to all runs. A run's time is its own wall time from
 summary.json (set-up, steps and output; not the program's start-up, the same for every run).
-The result holds every run, the front of all of them and r-ITR's own front, its knee
-(scripts/accuracy_front.py) and the verdict of the knee against the fixed rungs; the runs go
+The result holds every run with its time over that of a fixed mesh of its accuracy
+(interpolated between the rungs), the front of all of them and r-ITR's own front, its knee
+(scripts/accuracy_front.py), the run of the best time to accuracy (the smallest such ratio),
+and the verdicts of both against the fixed rungs; the runs go
 one after another, so that their times are comparable. `--reuse` keeps runs already finished
 in the work directory (a sweep cut short goes on where it stopped). `--quick` runs two steps of
 the two coarsest fixed rungs (the second as the reference) and of the first two r-ITR
@@ -124,12 +126,16 @@ def main():
     for r in measured_ritr:
         r["time_to_accuracy"] = verdict(r, measured_fixed) if measured_fixed else None
     chosen = knee(measured_ritr)
+    ratios = [r for r in measured_ritr if (r["time_to_accuracy"] or {}).get("interpolated_ratio")]
+    best = min(ratios, key=lambda r: r["time_to_accuracy"]["interpolated_ratio"]) if ratios else None
     result = {"scene": scene_name(args.scene), "overrides": common, "vary": args.vary, "reference": reference["name"],
               "runs": [reference] + rungs + ritr_runs,
               "front": [r["name"] for r in front(measured)],
               "ritr_front": [r["name"] for r in front(measured_ritr)],
               "knee": chosen["name"] if chosen else None,
-              "knee_verdict": verdict(chosen, measured_fixed) if chosen and measured_fixed else None}
+              "knee_verdict": verdict(chosen, measured_fixed) if chosen and measured_fixed else None,
+              "best": best["name"] if best else None,
+              "best_verdict": best["time_to_accuracy"] if best else None}
     for r in result["runs"]:
         r.pop("directory", None)
     text = json.dumps(result, indent=1)
@@ -141,6 +147,8 @@ def main():
         print(text)
     if result["knee_verdict"]:
         print(f"sweep: knee {chosen['name']}: {result['knee_verdict']['sentence']}", file=sys.stderr)
+    if best:
+        print(f"sweep: best time to accuracy {best['name']}: {result['best_verdict']['sentence']}", file=sys.stderr)
     failed = [r["name"] for r in result["runs"] if r["exit_code"] != 0 or r.get("invariant_violations")]
     if failed:
         print("sweep: failed or broke an invariant: " + ", ".join(failed), file=sys.stderr)

@@ -7,7 +7,7 @@ Prints a Markdown table (every run: settings, vertices, time, accuracy, its time
 fixed mesh of its accuracy interpolated between the rungs, on which front) and the knee's
 verdict, and draws the runs' mean Hausdorff distance against their time on log-log axes:
 the fixed rungs as a line labelled by their vertex counts, each r-ITR run as a point, r-ITR's
-front as a line and its knee circled (default PATH: beside the JSON, NAME_pareto.png).
+front as a line, its knee circled and the run of the best time to accuracy starred (default PATH: beside the JSON, NAME_pareto.png).
 """
 import argparse
 import json
@@ -34,11 +34,15 @@ def table(result):
         mark = "all" if r["name"] in result["front"] else ("r-ITR" if r["name"] in result["ritr_front"] else "")
         if r["name"] == result["knee"]:
             mark += " (knee)"
+        if r["name"] == result.get("best"):
+            mark += " (best time to accuracy)"
         ratio = (r.get("time_to_accuracy") or {}).get("interpolated_ratio")
         lines.append(f"| {r['name']} | {settings_text(r)} | {r.get('n_vertices', 0):,} | {r['seconds']:.2f} "
                      f"| {accuracy} | {f'{ratio:.2f}' if ratio else '-'} | {mark} |")
     if result.get("knee_verdict"):
-        lines += ["", f"Knee `{result['knee']}`: {result['knee_verdict']['sentence']}"]
+        lines += ["", f"Knee of r-ITR's front, `{result['knee']}`: {result['knee_verdict']['sentence']}"]
+    if result.get("best_verdict"):
+        lines += ["", f"Best time to accuracy, `{result['best']}`: {result['best_verdict']['sentence']}"]
     return "\n".join(lines)
 
 
@@ -64,13 +68,17 @@ def plot(result, path):
         k = runs[result["knee"]]
         ax.plot([k["seconds"]], [k["mean_hausdorff"]], "o", markersize=14, markerfacecolor="none", color="C3",
                 label=f"knee: {settings_text(k)}")
+    if result.get("best") in runs:
+        b = runs[result["best"]]
+        ax.plot([b["seconds"]], [b["mean_hausdorff"]], "*", markersize=16, markerfacecolor="none", color="C2",
+                label=f"best time to accuracy: {settings_text(b)}")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time of the run [s]")
     ax.set_ylabel(f"mean Hausdorff distance to {result['reference']}")
     ax.set_title(os.path.splitext(os.path.basename(result["scene"]))[0].replace("_", " "))
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
