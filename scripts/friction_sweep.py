@@ -18,7 +18,6 @@ or if r-ITR's final centroids do not fall as friction falls (the JSON is written
 `--quick` runs two steps of every run and of the two coarsest rungs and checks no outcome.
 """
 import argparse
-import json
 import os
 import sys
 import tempfile
@@ -26,7 +25,7 @@ from types import SimpleNamespace
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from frame_metrics import centroid_heights  # noqa: E402
-from ladder import cost_ratios, measure, run_rung, rung_overrides, scene_name  # noqa: E402
+from ladder import cost_ratios, failed_runs, measure, run_rung, rung_overrides, scene_name, write_result  # noqa: E402
 
 
 def outcome(run):
@@ -106,18 +105,12 @@ def main():
     for r in runs:
         r.pop("directory")
 
-    failed = [r["name"] for r in runs if r["exit_code"] != 0 or r.get("invariant_violations")]
+    failed = failed_runs(runs)
     problems = [] if args.quick or failed else check(args, runs)
     result = {"scene": scene_name(args.scene), "quick": args.quick, "pass_below": args.pass_below,
               "mu": args.mu, "baseline_rss_bytes": baseline_rss, "runs": runs,
               "headline": headline(runs, baseline_rss), "unexpected": problems}
-    text = json.dumps(result, indent=1)
-    if args.out:
-        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-        with open(args.out, "w") as f:
-            f.write(text + "\n")
-    else:
-        print(text)
+    write_result(result, args.out)
     for r in runs:
         if "passes" in r:
             status = "quick run" if args.quick else outcome(r)

@@ -120,6 +120,22 @@ def compare(args, run, reference):
                hausdorff_over_time=[[f["time"], f["hausdorff"]] for f in c["per_frame"]])
 
 
+def write_result(result, out, echo=True):
+    """Writes a result as JSON to the file `out` (its folder created), or with `echo` to stdout."""
+    text = json.dumps(result, indent=1)
+    if out:
+        os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+        with open(out, "w") as f:
+            f.write(text + "\n")
+    elif echo:
+        print(text)
+
+
+def failed_runs(runs):
+    """The names of the runs that failed or broke an invariant."""
+    return [r["name"] for r in runs if r["exit_code"] != 0 or r.get("invariant_violations")]
+
+
 def is_ritr(run):
     # Results written before runs carried "adaptivity" name their r-ITR runs "ritr...".
     return run.get("adaptivity", run["name"].startswith("ritr"))
@@ -293,14 +309,8 @@ def main():
         run.pop("directory")
     if args.summary:
         print(summary(result, os.path.relpath(work)))
-    text = json.dumps(result, indent=1)
-    if args.out:
-        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-        with open(args.out, "w") as f:
-            f.write(text + "\n")
-    elif not args.summary:
-        print(text)
-    bad = [r["name"] for r in runs if r["exit_code"] != 0 or r.get("invariant_violations")]
+    write_result(result, args.out, echo=not args.summary)
+    bad = failed_runs(runs)
     if bad:
         print("ladder: failed or broke an invariant: " + ", ".join(bad), file=sys.stderr)
         return 1

@@ -30,7 +30,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from accuracy_front import front, knee, verdict  # noqa: E402
-from ladder import compare, run_rung, rung_overrides, scene_name  # noqa: E402
+from ladder import compare, failed_runs, run_rung, rung_overrides, scene_name, write_result  # noqa: E402
 
 
 def variants(vary):
@@ -138,18 +138,12 @@ def main():
               "best_verdict": best["time_to_accuracy"] if best else None}
     for r in result["runs"]:
         r.pop("directory", None)
-    text = json.dumps(result, indent=1)
-    if args.out:
-        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-        with open(args.out, "w") as f:
-            f.write(text + "\n")
-    else:
-        print(text)
+    write_result(result, args.out)
     if result["knee_verdict"]:
         print(f"sweep: knee {chosen['name']}: {result['knee_verdict']['sentence']}", file=sys.stderr)
     if best:
         print(f"sweep: best time to accuracy {best['name']}: {result['best_verdict']['sentence']}", file=sys.stderr)
-    failed = [r["name"] for r in result["runs"] if r["exit_code"] != 0 or r.get("invariant_violations")]
+    failed = failed_runs(result["runs"])
     if failed:
         print("sweep: failed or broke an invariant: " + ", ".join(failed), file=sys.stderr)
         return 1

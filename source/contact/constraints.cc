@@ -1,3 +1,4 @@
+#include <ritr/common/first_order_dual.h>
 #include <ritr/common/psd_projection.h>
 #include <ritr/contact/barrier.h>
 #include <ritr/contact/constraints.h>
@@ -17,64 +18,10 @@ namespace ritr::contact
   // Named (not anonymous) so that lambdas in the exported templates may capture these types.
   namespace constraints_detail
   {
-    // Forward-mode first-order dual number: gradients at O(N) per operation (the second
-    // order type costs O(N^2)), used where no Hessian is needed.
-    template <int N>
-    struct FirstOrderDual
-    {
-      double                      value = 0.0;
-      Eigen::Matrix<double, N, 1> grad  = Eigen::Matrix<double, N, 1>::Zero();
-
-      FirstOrderDual() = default;
-      FirstOrderDual(const double v) : value(v) {}
-      static FirstOrderDual variable(const int i, const double v)
-      {
-        FirstOrderDual d(v);
-        d.grad[i] = 1.0;
-        return d;
-      }
-      FirstOrderDual &operator+=(const FirstOrderDual &b)
-      {
-        value += b.value;
-        grad += b.grad;
-        return *this;
-      }
-    };
-    template <int N>
-    FirstOrderDual<N> make(const double v, const Eigen::Matrix<double, N, 1> &g)
-    {
-      FirstOrderDual<N> r(v);
-      r.grad = g;
-      return r;
-    }
-    template <int N>
-    FirstOrderDual<N> operator+(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
-    {
-      return make<N>(a.value + b.value, a.grad + b.grad);
-    }
-    template <int N>
-    FirstOrderDual<N> operator-(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
-    {
-      return make<N>(a.value - b.value, a.grad - b.grad);
-    }
-    template <int N>
-    FirstOrderDual<N> operator*(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
-    {
-      return make<N>(a.value * b.value, a.value * b.grad + b.value * a.grad);
-    }
-    template <int N>
-    FirstOrderDual<N> operator/(const FirstOrderDual<N> &a, const FirstOrderDual<N> &b)
-    {
-      const double inv = 1.0 / b.value;
-      return make<N>(a.value * inv, (a.grad - (a.value * inv) * b.grad) * inv);
-    }
-
+    // Gradients alone at O(N) per operation (the second-order type costs O(N^2)), where no
+    // Hessian is needed.
+    using ritr::FirstOrderDual;
     using ritr::value_of;
-    template <int N>
-    double value_of(const FirstOrderDual<N> &a)
-    {
-      return a.value;
-    }
 
     // f(a) for a plain double (value only) or a dual number (chain rule).
     inline double compose(const double, const double f, const double, const double)
@@ -85,7 +32,7 @@ namespace ritr::contact
     FirstOrderDual<N> compose(const FirstOrderDual<N> &a, const double f, const double df,
                               const double)
     {
-      return make<N>(f, df * a.grad);
+      return chain(a, f, df);
     }
     template <int N>
     SecondOrderDual<N> compose(const SecondOrderDual<N> &a, const double f, const double df,
