@@ -20,8 +20,8 @@ namespace
 {
   const std::string folder = "output/output_directory_lock";
 
-  // The small scene made long enough (100 steps of a finer strip, a few seconds) to be caught
-  // while it runs, writing to `output`.
+  // The small scene made long enough (100 steps of a finer strip) to be caught while it runs,
+  // writing to `output`.
   std::string long_scene(const std::string &output)
   {
     return replaced(replaced(replaced(small_scene, "OUTPUT", output), "set end time = 0.02", "set end time = 1"),
@@ -86,6 +86,8 @@ TEST(OutputDirectoryLock, SecondRunAndResumeAreRefusedWhileTheFirstRuns)
 
   const pid_t pid = start_ritr({first});
   ASSERT_TRUE(wait_for_lock(pid, shared)) << "the first run ended before it held its directory";
+  // Paused while the others try, so that the overlap does not depend on the machine's speed.
+  ASSERT_EQ(kill(pid, SIGSTOP), 0);
   // Another scene in the same directory, and a resume of the first: both refused at once.
   const std::string second   = write_scene("second", replaced(small_scene, "OUTPUT", shared));
   const std::string expected = "output directory: '" + shared + "' is in use by another ritr run (process " +
@@ -100,6 +102,7 @@ TEST(OutputDirectoryLock, SecondRunAndResumeAreRefusedWhileTheFirstRuns)
       EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
     }
   ASSERT_TRUE(still_running(pid)) << "the first run ended before the others were refused: the test saw no overlap";
+  ASSERT_EQ(kill(pid, SIGCONT), 0);
   EXPECT_EQ(exit_code_of(pid), 0);
 
   // The first run's results are those of the run alone, every frame in place; its lock is gone.
