@@ -13,6 +13,7 @@ namespace ritr::contact
 
   BarrierStiffness initial_barrier_stiffness(const double bbox_diagonal, const double dhat,
                                              const double           average_mass,
+                                             const double           average_weight,
                                              const Eigen::VectorXd &grad_energy,
                                              const Eigen::VectorXd &grad_barrier)
   {
@@ -24,7 +25,8 @@ namespace ritr::contact
 
     BarrierStiffness s;
     // 4 d b''(d) is the barrier Hessian along the normal in unsquared-distance units.
-    s.kappa_min = 1e11 * average_mass / (4.0 * d_ref * log_barrier_second_derivative(d_ref, dhat_sqr));
+    s.kappa_min =
+      1e11 * average_mass / (average_weight * 4.0 * d_ref * log_barrier_second_derivative(d_ref, dhat_sqr));
     s.kappa_max = 100.0 * s.kappa_min;
 
     const double gb = grad_barrier.squaredNorm();

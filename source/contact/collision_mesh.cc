@@ -144,6 +144,20 @@ namespace ritr
   }
 
   template <int dim>
+  double CollisionMesh<dim>::mean_body_vertex_weight() const
+  {
+    double       sum = 0.0;
+    unsigned int n   = 0;
+    for (int cv = 0; cv < surface_.n_vertices; ++cv)
+      if (!surface_.vertex_is_obstacle(cv))
+        {
+          sum += weights_.vertex_weights[cv];
+          ++n;
+        }
+    return n > 0 && sum > 0.0 ? sum / n : 1.0;
+  }
+
+  template <int dim>
   Eigen::MatrixXd CollisionMesh<dim>::vertices(const Eigen::VectorXd &z) const
   {
     Eigen::MatrixXd V(surface_.n_vertices, dim);

@@ -71,7 +71,8 @@ namespace ritr
             Eigen::VectorXd           others     = Eigen::VectorXd::Zero(z.size());
             terms_.add_energy_gradient(z, candidates, others, TermSum<dim>::Select::without_contact);
             auto stiffness = contact::initial_barrier_stiffness(diagonal, terms_.collision_mesh().dhat(),
-                                                                materials_.nodal_masses(u).mean(), others,
+                                                                materials_.nodal_masses(u).mean(),
+                                                                terms_.collision_mesh().mean_body_vertex_weight(), others,
                                                                 barrier->unscaled_gradient(z, candidates));
             if (!step.dynamic)
               {

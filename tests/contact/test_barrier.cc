@@ -338,21 +338,29 @@ TEST(BarrierStiffness, InitialStiffness)
 
   // No barrier gradient: kappa_min.
   const Eigen::VectorXd gE = Eigen::VectorXd::LinSpaced(6, -1, 1);
-  auto s = initial_barrier_stiffness(bbox, dhat, mass, gE, Eigen::VectorXd::Zero(6));
+  auto s = initial_barrier_stiffness(bbox, dhat, mass, 1.0, gE, Eigen::VectorXd::Zero(6));
   EXPECT_DOUBLE_EQ(s.kappa_min, kmin);
   EXPECT_DOUBLE_EQ(s.kappa_max, 100 * kmin);
   EXPECT_DOUBLE_EQ(s.kappa, kmin);
 
   // Barrier gradient opposing the energy gradient: kappa minimises |gE + kappa gB|.
   const Eigen::VectorXd gB = -gE / (10 * kmin);
-  s = initial_barrier_stiffness(bbox, dhat, mass, gE, gB);
+  s = initial_barrier_stiffness(bbox, dhat, mass, 1.0, gE, gB);
   EXPECT_NEAR(s.kappa, 10 * kmin, 1e-9 * kmin);
   EXPECT_LE((gE + s.kappa * gB).norm(), 1e-9 * gE.norm());
 
   // Clamped to [kappa_min, kappa_max].
-  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(bbox, dhat, mass, gE, -gE / (1e3 * kmin)).kappa,
+  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(bbox, dhat, mass, 1.0, gE, -gE / (1e3 * kmin)).kappa,
                    100 * kmin);
-  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(bbox, dhat, mass, gE, gE).kappa, kmin);
+  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(bbox, dhat, mass, 1.0, gE, gE).kappa, kmin);
+
+  // Weighted constraints: the bounds are per unit weight, so that one constraint of the
+  // average weight is as stiff as an unweighted one.
+  const double w = 1e-4;
+  s              = initial_barrier_stiffness(bbox, dhat, mass, w, gE, Eigen::VectorXd::Zero(6));
+  EXPECT_NEAR(s.kappa_min * w, kmin, 1e-12 * kmin);
+  EXPECT_NEAR(s.kappa_max * w, 100 * kmin, 1e-12 * kmin);
+  EXPECT_NEAR(initial_barrier_stiffness(bbox, dhat, mass, w, gE, w * gB).kappa * w, 10 * kmin, 1e-9 * kmin);
 }
 
 TEST(BarrierStiffness, UpdateDoublesOnlyWhenSqueezed)

@@ -57,20 +57,25 @@ namespace ritr::contact
   };
 
   // Initial barrier stiffness (IPC).
-  //  bbox_diagonal: diagonal l of the scene bounding box;
-  //  dhat:          unsquared activation distance;
-  //  average_mass:  average lumped nodal mass m;
-  //  grad_energy:   gradient of the incremental potential without contact, at the start
-  //                 of the time step;
-  //  grad_barrier:  gradient of the unscaled weighted barrier sum at the same positions
-  //                 (barrier_gradient, i.e. before multiplying by kappa).
-  // kappa_min = 1e11 m / (4 d_ref b''(d_ref)) with d_ref = (1e-8 l)^2 (clamped to
-  // dhat^2/2), i.e. the stiffness at which the barrier's normal Hessian at a tiny gap
-  // matches 1e11 times the mass; kappa_max = 100 kappa_min. kappa is the minimiser of
-  // |grad_energy + kappa grad_barrier|, clamped to [kappa_min, kappa_max] (kappa_min when
-  // there is no barrier gradient).
+  //  bbox_diagonal:  diagonal l of the scene bounding box;
+  //  dhat:           unsquared activation distance;
+  //  average_mass:   average lumped nodal mass m;
+  //  average_weight: average constraint weight w of the bodies' collision vertices (1 for
+  //                  IPC's unweighted barrier);
+  //  grad_energy:    gradient of the incremental potential without contact, at the start
+  //                  of the time step;
+  //  grad_barrier:   gradient of the unscaled weighted barrier sum at the same positions
+  //                  (barrier_gradient, i.e. before multiplying by kappa).
+  // kappa_min = 1e11 m / (4 w d_ref b''(d_ref)) with d_ref = (1e-8 l)^2 (clamped to
+  // dhat^2/2), i.e. the stiffness at which one typical constraint's normal Hessian at a tiny
+  // gap matches 1e11 times the mass; kappa_max = 100 kappa_min. IPC's bounds are meant for
+  // unit weights: with weights that are boundary measures (~h^(dim-1)) and no division by w,
+  // the cap held 3D gaps at 1e-4 dhat, where the barrier's quadratic model is good over a
+  // fraction of the gap only and CCD cut most Newton steps to a few percent (doc/method.md,
+  // Barrier stiffness). kappa is the minimiser of |grad_energy + kappa grad_barrier|, clamped
+  // to [kappa_min, kappa_max] (kappa_min when there is no barrier gradient).
   BarrierStiffness initial_barrier_stiffness(double bbox_diagonal, double dhat,
-                                             double average_mass,
+                                             double average_mass, double average_weight,
                                              const Eigen::VectorXd &grad_energy,
                                              const Eigen::VectorXd &grad_barrier);
 

@@ -40,6 +40,8 @@ namespace ritr
     const Eigen::VectorXd            &reference() const { return reference_; }
     const contact::ConstraintWeights &weights() const { return weights_; }
     double                            dhat() const { return dhat_; }
+    // Mean weight of the bodies' collision vertices: the scale of one constraint's weight.
+    double mean_body_vertex_weight() const;
 
     // Collision vertex positions (rows) of the state z.
     Eigen::MatrixXd vertices(const Eigen::VectorXd &z) const;
