@@ -42,6 +42,12 @@ def duration(run):
     return f"{t:.2f} s" if t < 10 else f"{t:.0f} s"
 
 
+def share(part, whole):
+    """part in % of whole: two significant digits below 10 %, whole percents above."""
+    x = 100 * part / whole
+    return f"{x:.0f}" if x >= 10 else f"{x:.2g}"
+
+
 def vertices(run):
     return f"{run.get('n_vertices', 0):,}"
 
@@ -59,9 +65,9 @@ def row(name, title):
         if fixed is None:
             return f"| {link} | {vertices(ritr)} | {measure(ritr)} | {duration(ritr)} | - | - | - | {head['why']} |"
         lower = ritr["final_energy"] < fixed["final_energy"]
-        verdict = (f"lower energy than the {vertices(fixed)}-vertex mesh in {100 * seconds(ritr) / seconds(fixed):.0f} % "
+        verdict = (f"lower energy than the {vertices(fixed)}-vertex mesh in {share(seconds(ritr), seconds(fixed))} % "
                    f"of its time" if lower else
-                   f"the {vertices(fixed)}-vertex mesh is lower, in {100 * seconds(fixed) / seconds(ritr):.0f} % of r-ITR's time")
+                   f"the {vertices(fixed)}-vertex mesh is lower, in {share(seconds(fixed), seconds(ritr))} % of r-ITR's time")
     elif "passes" in ritr or "centroid_over_time" in ritr or name == "varying_friction":
         passing = lambda r: "passes" if r.get("passes") else "locks"
         measure = lambda r: passing(r)
@@ -70,7 +76,7 @@ def row(name, title):
                          key=lambda r: r.get("n_vertices", 0))
             return (f"| {link} | {vertices(ritr)} | {measure(ritr)} | {duration(ritr)} | {vertices(finest)} "
                     f"| {measure(finest)} | {duration(finest)} | no fixed rung passes |")
-        verdict = f"passes like the {vertices(fixed)}-vertex mesh in {100 * seconds(ritr) / seconds(fixed):.0f} % of its time"
+        verdict = f"passes like the {vertices(fixed)}-vertex mesh in {share(seconds(ritr), seconds(fixed))} % of its time"
     else:
         measure = lambda r: f"Hausdorff {r['mean_hausdorff']:.2g}" if "mean_hausdorff" in r else "reference"
         ratio = (head.get("time_to_accuracy") or {}).get("interpolated_ratio")

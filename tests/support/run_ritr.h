@@ -163,6 +163,17 @@ end
     return table;
   }
 
+  // The named column of a CSV file of ritr's, as numbers.
+  inline std::vector<double> csv_column(const std::string &path, const std::string &name)
+  {
+    const CsvTable      t = read_csv(path);
+    std::vector<double> c;
+    for (const auto &row : t.rows)
+      c.push_back(row[t.column(name)]);
+    return c;
+  }
+
+
   // Writes NAME.prm: the scene prm/verification/NAME.prm with its output directory set to
   // `directory` and `extra` (whole subsections) appended. Returns the file's name.
   inline std::string scene_variant(const std::string &name, const std::string &variant,

@@ -31,14 +31,14 @@ TEST(ReferencePenalties, ClassifiesRectangleAndBox)
   r.subdivisions = {3, 2};
   const auto c2  = classify_sliding(build_mesh<2>({r}), 1e-6);
   // 4x3 nodes: 2 interior, 4 corners, 6 sliding on the sides.
-  EXPECT_EQ(count_kinds(c2), (std::array<int, 4>{2, 6, 0, 4}));
+  EXPECT_EQ(count_kinds(c2), (std::array<int, 4>{{2, 6, 0, 4}}));
 
   BodyDescription b;
   b.shape        = "box";
   b.subdivisions = {2, 2, 2};
   const auto c3  = classify_sliding(build_mesh<3>({b}), 1e-6);
   // 27 nodes: 1 interior, 6 face centres, 12 edge midpoints, 8 corners.
-  EXPECT_EQ(count_kinds(c3), (std::array<int, 4>{1, 6, 12, 8}));
+  EXPECT_EQ(count_kinds(c3), (std::array<int, 4>{{1, 6, 12, 8}}));
 }
 
 template <int dim>

@@ -50,15 +50,6 @@ namespace
 
   bool still_running(const pid_t pid) { return waitpid(pid, nullptr, WNOHANG) == 0; }
 
-  // A column of log.csv.
-  std::vector<double> column(const std::string &file, const std::string &name)
-  {
-    const CsvTable      t = read_csv(file);
-    std::vector<double> c;
-    for (const auto &row : t.rows)
-      c.push_back(row[t.column(name)]);
-    return c;
-  }
 
   // Every file each .pvd collection of `output` names exists.
   void expect_collections_complete(const std::string &output)
@@ -107,7 +98,7 @@ TEST(OutputDirectoryLock, SecondRunAndResumeAreRefusedWhileTheFirstRuns)
 
   // The first run's results are those of the run alone, every frame in place; its lock is gone.
   EXPECT_NE(read_file(shared + "/summary.json").find("\"complete\": true"), std::string::npos);
-  const auto energy = column(shared + "/log.csv", "energy"), energy_alone = column(alone + "/log.csv", "energy");
+  const auto energy = csv_column(shared + "/log.csv", "energy"), energy_alone = csv_column(alone + "/log.csv", "energy");
   ASSERT_EQ(energy.size(), 100u);
   ASSERT_EQ(energy_alone.size(), 100u);
   for (std::size_t i = 0; i < energy.size(); ++i)

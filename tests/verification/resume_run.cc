@@ -98,15 +98,6 @@ namespace
     return m[1];
   }
 
-  // The steps of log.csv, and the (step, solve, iteration) triples of newton.csv, in order.
-  std::vector<double> column(const std::string &file, const std::string &name)
-  {
-    const CsvTable     t = read_csv(file);
-    std::vector<double> c;
-    for (const auto &row : t.rows)
-      c.push_back(row[t.column(name)]);
-    return c;
-  }
 } // namespace
 
 TEST(ResumeRun, KilledAndResumedRunMatchesTheUninterruptedOne)
@@ -149,14 +140,14 @@ TEST(ResumeRun, KilledAndResumedRunMatchesTheUninterruptedOne)
   std::vector<double> steps;
   for (unsigned int s = 1; s <= n_steps; ++s)
     steps.push_back(s);
-  EXPECT_EQ(column(killed + "/log.csv", "step"), steps);
-  const auto energy_a = column(whole + "/log.csv", "energy"), energy_b = column(killed + "/log.csv", "energy");
+  EXPECT_EQ(csv_column(killed + "/log.csv", "step"), steps);
+  const auto energy_a = csv_column(whole + "/log.csv", "energy"), energy_b = csv_column(killed + "/log.csv", "energy");
   ASSERT_EQ(energy_a.size(), energy_b.size());
   for (std::size_t i = 0; i < energy_a.size(); ++i)
     EXPECT_NEAR(energy_a[i], energy_b[i], 1e-10 * std::abs(energy_a[i])) << "step " << i + 1;
   // newton.csv: the same iterations, each once.
   for (const char *c : {"step", "solve", "iteration"})
-    EXPECT_EQ(column(whole + "/newton.csv", c), column(killed + "/newton.csv", c)) << c;
+    EXPECT_EQ(csv_column(whole + "/newton.csv", c), csv_column(killed + "/newton.csv", c)) << c;
   EXPECT_LE(max_difference(numbers(whole + "/newton.csv"), numbers(killed + "/newton.csv")), 1e-9);
 
   // Every frame once in each collection, at the same times.
