@@ -15,6 +15,10 @@ import json
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchmark_report import percent, seconds_text  # noqa: E402
+from ladder import run_seconds  # noqa: E402
+
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 BEGIN, END = "<!-- results table: scripts/results_table.py -->", "<!-- end of results table -->"
 
@@ -33,19 +37,8 @@ SCENES = [
 ]
 
 
-def seconds(run):
-    return run.get("total_wall_seconds", run["wall_seconds"])
-
-
 def duration(run):
-    t = seconds(run)
-    return f"{t:.2f} s" if t < 10 else f"{t:.0f} s"
-
-
-def share(part, whole):
-    """part in % of whole: two significant digits below 10 %, whole percents above."""
-    x = 100 * part / whole
-    return f"{x:.0f}" if x >= 10 else f"{x:.2g}"
+    return f"{seconds_text(run_seconds(run))} s"
 
 
 def vertices(run):
@@ -65,9 +58,9 @@ def row(name, title):
         if fixed is None:
             return f"| {link} | {vertices(ritr)} | {measure(ritr)} | {duration(ritr)} | - | - | - | {head['why']} |"
         lower = ritr["final_energy"] < fixed["final_energy"]
-        verdict = (f"lower energy than the {vertices(fixed)}-vertex mesh in {share(seconds(ritr), seconds(fixed))} % "
+        verdict = (f"lower energy than the {vertices(fixed)}-vertex mesh in {percent(100 * run_seconds(ritr) / run_seconds(fixed))} % "
                    f"of its time" if lower else
-                   f"the {vertices(fixed)}-vertex mesh is lower, in {share(seconds(fixed), seconds(ritr))} % of r-ITR's time")
+                   f"the {vertices(fixed)}-vertex mesh is lower, in {percent(100 * run_seconds(fixed) / run_seconds(ritr))} % of r-ITR's time")
     elif "passes" in ritr or "centroid_over_time" in ritr or name == "varying_friction":
         passing = lambda r: "passes" if r.get("passes") else "locks"
         measure = lambda r: passing(r)
@@ -76,7 +69,7 @@ def row(name, title):
                          key=lambda r: r.get("n_vertices", 0))
             return (f"| {link} | {vertices(ritr)} | {measure(ritr)} | {duration(ritr)} | {vertices(finest)} "
                     f"| {measure(finest)} | {duration(finest)} | no fixed rung passes |")
-        verdict = f"passes like the {vertices(fixed)}-vertex mesh in {share(seconds(ritr), seconds(fixed))} % of its time"
+        verdict = f"passes like the {vertices(fixed)}-vertex mesh in {percent(100 * run_seconds(ritr) / run_seconds(fixed))} % of its time"
     else:
         measure = lambda r: f"Hausdorff {r['mean_hausdorff']:.2g}" if "mean_hausdorff" in r else "reference"
         ratio = (head.get("time_to_accuracy") or {}).get("interpolated_ratio")

@@ -77,11 +77,11 @@ namespace ritr
             if (!step.dynamic)
               {
                 // Statics has no inertia, so IPC's mass-scaled bounds mean nothing there; the
-                // cap at 100 times the lower bound shrinks with the cells (1e7 on the 18.7K
-                // punch, where gaps of 1e-9 L need ~1e8) and held gaps at 1e-12, where Newton
-                // and CCD crawl. Without it the doubling rule runs until the gaps stay open,
-                // and a load step starts as stiff as the last one ended, instead of letting
-                // the gaps it opened close again (doc/method.md, Barrier stiffness).
+                // cap at 100 times the lower bound shrinks with the cells (mass per unit
+                // weight ~ h) and once held gaps at 1e-12, where Newton and CCD crawl. Without
+                // it the doubling rule runs until the gaps stay open, and a load step starts as
+                // stiff as the last one ended, instead of letting the gaps it opened close
+                // again (doc/method.md, Barrier stiffness).
                 stiffness.kappa_max = std::numeric_limits<double>::infinity();
                 stiffness.kappa     = std::max(stiffness.kappa, step.barrier_stiffness);
               }
