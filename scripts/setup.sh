@@ -18,7 +18,9 @@ while [ $# -gt 0 ]; do
 done
 build="${1:-$root/build}"
 
-packages=(build-essential cmake libdeal.ii-dev libeigen3-dev libsuitesparse-dev libtbb-dev
+# deal.II brings MPI and Trilinos (Amesos with MUMPS, ML); openmpi-bin is mpirun, for runs
+# shared among processes and their test.
+packages=(build-essential cmake libdeal.ii-dev openmpi-bin libeigen3-dev libsuitesparse-dev libtbb-dev
           libopenblas0-pthread libblas-dev libgtest-dev ccache libvtk9-dev libcgal-dev
           python3-numpy python3-matplotlib)  # ladder.py (frame metrics), ladder_report.py (plots)
 $with_paraview && packages+=(paraview xvfb)

@@ -6,11 +6,15 @@
 #include <ritr/scene/parameters.h>
 #include <ritr/time/simulation.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +22,9 @@ namespace
 {
   void print_usage(std::ostream &out)
   {
-    out << "usage: ritr SCENE.prm           run a scene (outputs go to its 'output directory')\n"
+    out << "usage: ritr SCENE.prm           run a scene (outputs go to its 'output directory');\n"
+           "                                mpirun -np N ritr SCENE.prm shares a fixed-mesh run\n"
+           "                                among N processes\n"
            "       ritr SCENE.prm --resume  continue a stopped run of the scene from the last\n"
            "                                checkpoint.bin in its output directory\n"
            "       ritr --print-parameters  every parameter with its documentation and default\n"
@@ -74,33 +80,67 @@ namespace
   }
 
   template <int dim>
-  void run(const ritr::Scene &scene, const bool resume)
+  void run(const ritr::Scene &scene, const bool resume, const ritr::WorkShare &share)
   {
-    ritr::Simulation<dim> simulation(scene);
+    ritr::Simulation<dim> simulation(scene, share);
+    // Every process runs the simulation; the writer (rank 0) alone prints and writes.
+    std::ostream quiet(nullptr);
+    std::ostream &out = share.is_writer() ? std::cout : quiet;
     // The output directory is taken before anything is printed, so that a refusal (another
     // run holds it, it cannot be created) is the only line. A resumed run says where it
     // resumes once its checkpoint has passed the checks, for the same reason.
     simulation.claim_output_directory(resume);
     if (!resume)
       {
-        std::cout << "ritr: " << scene.parameter_file << ": " << dim << "D " << scene.mode << ", "
-                  << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
-                  << scene.n_steps() << " steps -> " << scene.output_directory << std::endl;
+        out << "ritr: " << scene.parameter_file << ": " << dim << "D " << scene.mode << ", "
+            << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
+            << scene.n_steps() << " steps"
+            << (share.distributed() ? " on " + std::to_string(share.size()) +
+                                        (share.size() == 1 ? " process" : " processes") + " (projected Newton, " +
+                                        ritr::name_of(ritr::distributed_solver_names, scene.solver.distributed_solver) +
+                                        " solver)" :
+                                      std::string())
+            << " -> " << scene.output_directory << std::endl;
         simulation.run();
       }
     else if (!simulation.resume())
       {
-        std::cout << "ritr: the run in " << scene.output_directory << " is already complete; nothing to resume"
-                  << std::endl;
+        out << "ritr: the run in " << scene.output_directory << " is already complete; nothing to resume"
+            << std::endl;
         return;
       }
-    std::cout << "ritr: done; results in " << scene.output_directory
-              << " (solution.pvd, reference.pvd, log.csv, summary.json)" << std::endl;
+    out << "ritr: done; results in " << scene.output_directory
+        << " (solution.pvd, reference.pvd, log.csv, summary.json)" << std::endl;
+  }
+
+  // Whether an MPI launcher (mpirun, mpiexec, srun) started this process: Open MPI, MPICH
+  // and PMI/PMIx (Slurm) name the process's rank in its environment.
+  bool started_by_mpi_launcher()
+  {
+    for (const char *variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+      if (std::getenv(variable))
+        return true;
+    return false;
   }
 } // namespace
 
 int main(int argc, char **argv)
 {
+  // Started by a launcher, the processes share the run, and deal.II splits the cores among the
+  // processes of a node. Alone, this is a serial run without MPI: Open MPI would start a
+  // daemon for a process of its own (a "singleton"), which costs every run its start-up.
+  std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+  if (started_by_mpi_launcher())
+    mpi.emplace(argc, argv);
+  const ritr::WorkShare share = mpi ? ritr::WorkShare(MPI_COMM_WORLD) : ritr::WorkShare();
+  // Input errors and failed steps happen on every process alike (each reads the same scene,
+  // and every decision of a step is taken on values reduced over the processes): the writer
+  // says it once and all exit with its code.
+  const auto fail = [&](const std::string &what, const int code) {
+    if (share.is_writer() && !what.empty())
+      std::cerr << "ritr: error: " << what << std::endl;
+    return code;
+  };
   Command command;
   try
     {
@@ -108,17 +148,12 @@ int main(int argc, char **argv)
     }
   catch (const ritr::InputError &e)
     {
-      std::cerr << "ritr: error: " << e.what() << std::endl;
-      return 2;
+      return fail(e.what(), 2);
     }
-  if (command.action == Command::help)
+  if (command.action != Command::run)
     {
-      print_usage(std::cout);
-      return 0;
-    }
-  if (command.action == Command::print_parameters)
-    {
-      ritr::print_parameters(std::cout);
+      if (share.is_writer())
+        command.action == Command::help ? print_usage(std::cout) : ritr::print_parameters(std::cout);
       return 0;
     }
   try
@@ -131,24 +166,25 @@ int main(int argc, char **argv)
                                                         scene.solver.threads);
       switch (scene.dimension)
         {
-          case 1: run<1>(scene, command.resume); break;
-          case 2: run<2>(scene, command.resume); break;
-          default: run<3>(scene, command.resume); break;
+          case 1: run<1>(scene, command.resume, share); break;
+          case 2: run<2>(scene, command.resume, share); break;
+          default: run<3>(scene, command.resume, share); break;
         }
     }
   catch (const ritr::InputError &e)
     {
-      std::cerr << "ritr: error: " << e.what() << std::endl;
-      return 2;
+      return fail(e.what(), 2);
     }
   catch (const ritr::ConvergenceError &e)
     {
-      std::cerr << "ritr: error: " << e.what() << "; steps written so far are kept" << std::endl;
-      return 3;
+      return fail(std::string(e.what()) + "; steps written so far are kept", 3);
     }
   catch (const std::exception &e)
     {
+      // Possibly on this process alone: the others would wait for it forever.
       std::cerr << "ritr: error: " << e.what() << std::endl;
+      if (share.distributed())
+        MPI_Abort(share.communicator(), 1);
       return 1;
     }
   return 0;

@@ -46,15 +46,17 @@ namespace ritr
   } // namespace
 
   template <int dim>
-  std::unique_ptr<Problem<dim>> make_problem(const Scene &scene)
+  std::unique_ptr<Problem<dim>> make_problem(const Scene &scene, const WorkShare &share)
   {
     std::unique_ptr<Problem<dim>> p(new Problem<dim>());
-    p->scene = scene;
+    p->scene      = scene;
+    p->work_share = share;
     p->build_mesh_and_materials();
     p->set_initial_velocity();
     p->build_obstacles();
     p->build_dirichlet_conditions();
     p->build_contact();
+    p->share_cells();
     p->build_terms();
     p->check_initial_state();
     return p;
@@ -291,7 +293,7 @@ namespace ritr
   template class Problem<1>;
   template class Problem<2>;
   template class Problem<3>;
-  template std::unique_ptr<Problem<1>> make_problem<1>(const Scene &);
-  template std::unique_ptr<Problem<2>> make_problem<2>(const Scene &);
-  template std::unique_ptr<Problem<3>> make_problem<3>(const Scene &);
+  template std::unique_ptr<Problem<1>> make_problem<1>(const Scene &, const WorkShare &);
+  template std::unique_ptr<Problem<2>> make_problem<2>(const Scene &, const WorkShare &);
+  template std::unique_ptr<Problem<3>> make_problem<3>(const Scene &, const WorkShare &);
 } // namespace ritr

@@ -44,11 +44,35 @@ namespace ritr
   }
 
   template <int dim>
+  void Problem<dim>::share_cells()
+  {
+    if (!work_share.distributed())
+      return;
+    if (scene.adaptivity.enabled)
+      throw InputError(scene.where("Adaptivity/enabled") + ": r-adaptivity runs without mpirun (fixed meshes only are shared among processes)");
+    work_share.partition(mesh.cells, mesh.n_nodes());
+    owned_mesh.reference = mesh.reference;
+    owned_mesh.node_body = mesh.node_body;
+    owned_mesh.node_part = mesh.node_part;
+    for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+      if (work_share.owns_cell(c))
+        {
+          owned_mesh.cells.push_back(mesh.cells[c]);
+          owned_mesh.cell_material.push_back(mesh.cell_material[c]);
+        }
+    owned_materials = std::make_unique<CellMaterials<dim>>(owned_mesh, scene.materials);
+  }
+
+  template <int dim>
   void Problem<dim>::build_terms()
   {
     const AdaptivityScene &adaptivity = scene.adaptivity;
-    terms = std::make_unique<TermSum<dim>>(mesh, collisions.get());
-    terms->template add<ElasticityTerm<dim>>(*materials);
+    // The cell terms sum over this process's cells; the contact terms see this process's
+    // candidates (TermSum::share_work).
+    const CellMaterials<dim> &cell_materials = owned_materials ? *owned_materials : *materials;
+    terms = std::make_unique<TermSum<dim>>(cell_materials.mesh(), collisions.get());
+    terms->share_work(work_share);
+    terms->template add<ElasticityTerm<dim>>(cell_materials);
     if (scene.dynamic())
       {
         if (adaptivity.enabled && adaptivity.projection == PredictorProjection::in_optimization)
@@ -64,10 +88,10 @@ namespace ritr
         else
           // A fixed mesh reads the predictor's nodal values on its own mesh; r-ITR projecting
           // after the optimisation does so on every candidate mesh (the ablation of Fig. 6).
-          terms->template add<InertiaTerm<dim>>(*materials, InertiaTerm<dim>::Predictor::nodal,
+          terms->template add<InertiaTerm<dim>>(cell_materials, InertiaTerm<dim>::Predictor::nodal,
                                                 adaptivity.enabled ? adaptivity.inertia : InertiaForm::corrected);
       }
-    terms->template add<BodyForceTerm<dim>>(*materials);
+    terms->template add<BodyForceTerm<dim>>(cell_materials);
     if (collisions)
       {
         terms->template add<ContactBarrierTerm<dim>>(*collisions);
@@ -82,7 +106,8 @@ namespace ritr
 #define RITR_INSTANTIATE(dim)                                                                                          \
   template SimplexQuadrature<dim> Problem<dim>::transfer_quadrature() const;                                           \
   template transfer::TransferIntegration Problem<dim>::transfer_integration() const;                                   \
-  template void                   Problem<dim>::build_terms();
+  template void                   Problem<dim>::build_terms();                                                         \
+  template void                   Problem<dim>::share_cells();
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)

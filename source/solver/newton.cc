@@ -24,6 +24,22 @@ namespace ritr
       if (!kinematic[i])
         free_index[i] = n_free++;
 
+    // Shared among processes: Trilinos solves the projected Newton system (the trust region's
+    // CG on the exact Hessian and the shifted exact Hessian need CHOLMOD's factor).
+    const bool distributed = settings.work_share && settings.work_share->distributed();
+    std::vector<int> free_entry;
+    if (distributed)
+      {
+        if (settings.projection != HessianProjection::always)
+          throw std::logic_error("NewtonSolver: a run shared among processes takes projected Newton only");
+        if (!distributed_)
+          distributed_ = std::make_unique<DistributedLinearSystem>(*settings.work_share, settings.distributed_solver);
+        free_entry.resize(n_free);
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (free_index[i] >= 0)
+            free_entry[free_index[i]] = static_cast<int>(i);
+      }
+
     NewtonResult    result;
     Eigen::VectorXd g(n), dz(n);
     Triplets        h;
@@ -68,14 +84,29 @@ namespace ritr
             exact_system_.assemble(exact_triplets_, free_index, n_free, dz, rhs);
             system_.assemble_changed(exact_system_, projection_changes_);
           }
+        else if (distributed)
+          {
+            // This process's Hessian entries and their coupling to the prescribed step; the
+            // coupling is summed over the processes like the gradient was.
+            h.clear();
+            objective.hessian(z, h, !exact);
+            Eigen::VectorXd coupling = Eigen::VectorXd::Zero(n_free);
+            system_.assemble(h, free_index, n_free, dz, coupling);
+            settings.work_share->sum(coupling);
+            rhs += coupling;
+          }
         else
           {
             h.clear();
             objective.hessian(z, h, !exact);
             system_.assemble(h, free_index, n_free, dz, rhs);
           }
-        auto         start = std::chrono::steady_clock::now();
-        const double shift = cholesky_.factorize(system_.matrix());
+        auto   start = std::chrono::steady_clock::now();
+        double shift = 0;
+        if (distributed)
+          distributed_->factorize(system_.matrix(), free_entry);
+        else
+          shift = cholesky_.factorize(system_.matrix());
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (trust_region)
           {
@@ -88,7 +119,7 @@ namespace ritr
             continue;
           }
         start                         = std::chrono::steady_clock::now();
-        const Eigen::VectorXd dz_free = cholesky_.solve(rhs);
+        const Eigen::VectorXd dz_free = distributed ? distributed_->solve(rhs) : cholesky_.solve(rhs);
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         scatter_free(dz_free, free_index, dz);
 
@@ -202,5 +233,15 @@ namespace ritr
     result.status  = NewtonStatus::iteration_limit;
     result.failure = "no convergence in " + std::to_string(settings.max_iterations) + " Newton iterations";
     return result;
+  }
+
+  unsigned int NewtonSolver::n_symbolic_analyses() const
+  {
+    return cholesky_.n_symbolic_analyses() + (distributed_ ? distributed_->n_symbolic_analyses() : 0);
+  }
+
+  unsigned int NewtonSolver::n_factorizations() const
+  {
+    return cholesky_.n_factorizations() + (distributed_ ? distributed_->n_factorizations() : 0);
   }
 } // namespace ritr

@@ -70,10 +70,12 @@ namespace ritr
             const CollisionCandidates candidates = terms_.candidates_at(z);
             Eigen::VectorXd           others     = Eigen::VectorXd::Zero(z.size());
             terms_.add_energy_gradient(z, candidates, others, TermSum<dim>::Select::without_contact);
+            Eigen::VectorXd barrier_gradient = barrier->unscaled_gradient(z, candidates);
+            terms_.work_share().sum(barrier_gradient);  // this process's stencils only
             auto stiffness = contact::initial_barrier_stiffness(diagonal, terms_.collision_mesh().dhat(),
                                                                 materials_.nodal_masses(u).mean(),
                                                                 terms_.collision_mesh().mean_body_vertex_weight(), others,
-                                                                barrier->unscaled_gradient(z, candidates));
+                                                                barrier_gradient);
             if (!step.dynamic)
               {
                 // Statics has no inertia, so IPC's mass-scaled bounds mean nothing there; the

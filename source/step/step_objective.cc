@@ -19,7 +19,7 @@ namespace ritr
     candidates_ = terms_.candidates_at(z);
     if (!adaptive_ || !barrier_)
       return;
-    const double d = terms_.collision_mesh().active_minimum_distance(z, candidates_);
+    const double d = terms_.active_minimum_distance(z, candidates_);
     barrier_->set_stiffness(
       contact::update_barrier_stiffness(previous_distance_, d, barrier_->stiffness(), kappa_max_, bbox_diagonal_));
     previous_distance_ = d;

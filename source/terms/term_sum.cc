@@ -1,5 +1,6 @@
 #include <ritr/terms/term_sum.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -34,15 +35,33 @@ namespace ritr
   }
 
   template <int dim>
+  CollisionCandidates TermSum<dim>::owned(CollisionCandidates candidates) const
+  {
+    const WorkShare &share = work_share();
+    if (share.distributed())
+      candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                      [&](const contact::Candidate &c) { return !share.owns(c); }),
+                       candidates.end());
+    return candidates;
+  }
+
+  template <int dim>
   CollisionCandidates TermSum<dim>::candidates_at(const Eigen::VectorXd &z) const
   {
-    return collisions_ ? collisions_->candidates_at(z) : CollisionCandidates{};
+    return collisions_ ? owned(collisions_->candidates_at(z)) : CollisionCandidates{};
   }
 
   template <int dim>
   CollisionCandidates TermSum<dim>::candidates_along(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
   {
-    return collisions_ ? collisions_->candidates_along(z, dz) : CollisionCandidates{};
+    return collisions_ ? owned(collisions_->candidates_along(z, dz)) : CollisionCandidates{};
+  }
+
+  template <int dim>
+  double TermSum<dim>::active_minimum_distance(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const
+  {
+    return work_share().min(collisions_ ? collisions_->active_minimum_distance(z, candidates) :
+                                          std::numeric_limits<double>::infinity());
   }
 
   template <int dim>
@@ -64,13 +83,13 @@ namespace ritr
   template <int dim>
   double TermSum<dim>::energy(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const
   {
-    return sum(z, candidates, true);
+    return work_share().sum(sum(z, candidates, true));
   }
 
   template <int dim>
   double TermSum<dim>::objective(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const
   {
-    return sum(z, candidates, false);
+    return work_share().sum(sum(z, candidates, false));
   }
 
   template <int dim>
@@ -80,7 +99,7 @@ namespace ritr
     const TermPoint                              p{z, reference_, candidates};
     std::vector<std::pair<std::string, double>> v;
     for (const auto &t : terms_)
-      v.emplace_back(t->name(), t->value(p));
+      v.emplace_back(t->name(), work_share().sum(t->value(p)));
     return v;
   }
 
@@ -89,9 +108,17 @@ namespace ritr
                                          Eigen::VectorXd &g, const Select select) const
   {
     const TermPoint p{z, reference_, candidates};
-    for (const auto &t : terms_)
-      if (t->depends_on_state() && (select == Select::all || (select == Select::contact) == t->is_contact()))
-        t->add_gradient(p, g);
+    const auto      add = [&](Eigen::VectorXd &to) {
+      for (const auto &t : terms_)
+        if (t->depends_on_state() && (select == Select::all || (select == Select::contact) == t->is_contact()))
+          t->add_gradient(p, to);
+    };
+    if (!work_share().distributed())
+      return add(g);
+    Eigen::VectorXd part = Eigen::VectorXd::Zero(g.size());
+    add(part);
+    work_share().sum(part);
+    g += part;
   }
 
   template <int dim>
@@ -120,7 +147,7 @@ namespace ritr
     double fraction = 1.0;
     for (const auto &t : terms_)
       fraction = std::min(fraction, t->max_step(z, dz));
-    return fraction;
+    return work_share().min(fraction);
   }
 
   template <int dim>

@@ -10,8 +10,8 @@ namespace ritr
   Simulation<dim>::~Simulation() = default;
 
   template <int dim>
-  Simulation<dim>::Simulation(const Scene &scene)
-    : problem_(make_problem<dim>(scene))
+  Simulation<dim>::Simulation(const Scene &scene, const WorkShare &share)
+    : problem_(make_problem<dim>(scene, share))
     , scene_(problem_->scene)
     , mesh_(problem_->mesh)
     , obstacles_(problem_->obstacles)

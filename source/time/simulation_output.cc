@@ -43,6 +43,9 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::write_step_output(const unsigned int step)
   {
+    const Eigen::VectorXd forces = contact_forces();  // by every process of a shared run
+    if (!outputs_)
+      return;
     RunOutputs &out = *outputs_;
     const auto dir = out.directory;
     // Writes STEM-NNNNN.vtu and lists it in its collection; the time goes to output_seconds.
@@ -62,7 +65,6 @@ namespace ritr
     const auto scalar_field = [](const std::string &name, const std::vector<double> &v) {
       return VtuField{name, 1, Eigen::Map<const Eigen::VectorXd>(v.data(), v.size())};
     };
-    const Eigen::VectorXd forces = contact_forces();
     piece.point_data = {vector_field("displacement", x_ - u_), vector_field("velocity", v_),
                         vector_field("reference_position", u_), vector_field("contact_force", forces),
                         VtuField{"contact_pressure", 1, nodal_contact_pressures(mesh_, x_, forces)}};
@@ -138,6 +140,10 @@ namespace ritr
         if (r.outer_stop)
           ++stops[static_cast<std::size_t>(*r.outer_stop)];
       }
+    // Collective: every process calls write_summary at the same points of the run.
+    const std::vector<double> peak_rss = problem_->work_share.values_of_all(static_cast<double>(peak_rss_bytes()));
+    if (!outputs_)
+      return;
     write_file_atomically((outputs_->directory / "summary.json").string(), [&](std::ostream &s) {
       s << "{\n  \"complete\": " << (complete ? "true" : "false") << ",\n";
       if (!failure.empty())
@@ -149,15 +155,22 @@ namespace ritr
         << "  \"steps\": " << history_.size() << ",\n"
         << "  \"n_vertices\": " << mesh_.n_nodes() << ",\n"
         << "  \"n_cells\": " << mesh_.n_cells() << ",\n"
+        << "  \"mpi_ranks\": " << problem_->work_share.size() << ",\n"
         << "  \"total_wall_seconds\": " << total_seconds << ",\n"
         << "  \"wall_seconds_per_step\": " << total_seconds / std::max<std::size_t>(1, history_.size()) << ",\n"
         << "  \"linear_solve_seconds\": " << earlier_.linear_solve_seconds + newton_solver().seconds_in_linear_solves()
         << ",\n"
         << "  \"symbolic_factorizations\": "
-        << earlier_.symbolic_factorizations + newton_solver().linear_solver().n_symbolic_analyses() << ",\n"
+        << earlier_.symbolic_factorizations + newton_solver().n_symbolic_analyses() << ",\n"
         << "  \"numeric_factorizations\": "
-        << earlier_.numeric_factorizations + newton_solver().linear_solver().n_factorizations() << ",\n"
-        << "  \"peak_rss_bytes\": " << peak_rss_bytes() << ",\n"
+        << earlier_.numeric_factorizations + newton_solver().n_factorizations() << ",\n"
+        << "  \"peak_rss_bytes\": " << *std::max_element(peak_rss.begin(), peak_rss.end()) << ",\n"
+        << "  \"peak_rss_bytes_per_process\": [" << [&] {
+             std::string list;
+             for (const double bytes : peak_rss)
+               list += (list.empty() ? "" : ", ") + std::to_string(static_cast<std::uint64_t>(bytes));
+             return list;
+           }() << "],\n"
         << "  \"final_energy\": " << (history_.empty() ? 0.0 : history_.back().energy) << ",\n"
         << [&] {
              // The last step's energy term by term (complete runs; see run_steps).
@@ -195,6 +208,9 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::log_newton_iteration(const NewtonIterationRecord &record, const Eigen::VectorXd &z)
   {
+    // Collective in a shared run: every process computes it, the writer writes it.
+    const double distance = terms_.has_contact() ? terms_.active_minimum_distance(z, terms_.candidates_at(z)) :
+                                                   std::numeric_limits<double>::infinity();
     if (!outputs_)
       return;  // a simulation driven step by step (tests) writes no files
     if (logged_step_ != step_ + 1)
@@ -209,9 +225,7 @@ namespace ritr
       << ',' << record.prescribed_moving << ',' << record.judged_by_gradient << ',' << record.hessian_shift << ','
       << record.exact_hessian << ','
       << (barrier ? barrier->stiffness() : 0.0) << ','
-      << (terms_.has_contact() ? terms_.collision_mesh().active_minimum_distance(z, terms_.candidates_at(z)) :
-                                 std::numeric_limits<double>::infinity())
-      << ',' << record.trust_radius << ',' << record.cg_iterations << '\n';
+      << distance << ',' << record.trust_radius << ',' << record.cg_iterations << '\n';
   }
 
   template <int dim>
@@ -229,6 +243,8 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::create_outputs()
   {
+    if (!is_writer())
+      return;
     outputs_ = std::make_unique<RunOutputs>(scene_.output_directory);
     // Twelve digits: energies of refinement rungs are compared with each other, and six
     // digits (the stream default) hid differences of 1e-6 relative.
@@ -245,6 +261,8 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::append_log_row(const StepReport &r)
   {
+    if (!outputs_)
+      return;
     outputs_->log << r.step << ',' << r.time << ',' << mesh_.n_nodes() << ',' << r.energy << ','
                   << r.newton_iterations << ',' << r.outer_iterations << ',' << r.line_search_trials << ','
                   << r.initial_objective << ',' << r.sliding_violation << ',' << r.min_distance << ','
@@ -256,6 +274,8 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::flush_logs() const
   {
+    if (!outputs_)
+      return;
     write_file_atomically((outputs_->directory / "log.csv").string(),
                           [&](std::ostream &s) { s << outputs_->log.str(); });
     if (scene_.solver.newton_log)
@@ -266,8 +286,33 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::claim_output_directory(const bool resuming)
   {
-    if (directory_lock_)
+    if (claimed_)
       return;
+    claimed_ = true;
+    // In a shared run the writer claims the directory and tells the others whether it could;
+    // they stop quietly with it (InputError without a text of its own: the writer says why).
+    const WorkShare &share = problem_->work_share;
+    if (!share.is_writer())
+      {
+        if (!share.from_writer(true))
+          throw InputError("");
+        return;
+      }
+    try
+      {
+        claim_directory(resuming);
+      }
+    catch (const InputError &)
+      {
+        share.from_writer(false);
+        throw;
+      }
+    share.from_writer(true);
+  }
+
+  template <int dim>
+  void Simulation<dim>::claim_directory(const bool resuming)
+  {
     namespace fs             = std::filesystem;
     const fs::path directory = scene_.output_directory;
     const auto     refuse    = [&](const std::string &what) {
@@ -300,7 +345,8 @@ namespace ritr
     claim_output_directory(false);
     create_outputs();
     write_summary(0, false);
-    remove_previous_outputs(outputs_->directory);
+    if (outputs_)
+      remove_previous_outputs(outputs_->directory);
     flush_logs();
     write_step_output(0);
     start_ = std::chrono::steady_clock::now();
@@ -334,7 +380,8 @@ namespace ritr
                 write_checkpoint();
               }
             const double elapsed = seconds_since(start_);
-            std::cout << "step " << r.step << '/' << n_steps << "  t=" << std::setprecision(4) << r.time
+            if (is_writer())
+              std::cout << "step " << r.step << '/' << n_steps << "  t=" << std::setprecision(4) << r.time
                       << "  newton=" << r.newton_iterations << "  E=" << std::setprecision(6) << r.energy
                       << "  elapsed=" << std::setprecision(3) << wall_seconds() << "s  eta="
                       << elapsed / (r.step - first_step) * (n_steps - r.step) << "s" << std::endl;

@@ -72,6 +72,8 @@ namespace ritr
   template <int dim>
   void Simulation<dim>::write_checkpoint() const
   {
+    if (!outputs_)
+      return;
     ScopedTimer timer(outputs_->output_seconds);
     Checkpoint  c;
     c.dimension            = dim;
@@ -171,8 +173,19 @@ namespace ritr
     start_                           = std::chrono::steady_clock::now();
 
     create_outputs();
-    outputs_->output_seconds = c.output_seconds;
-    write_summary(wall_seconds(), false);
+    if (outputs_)
+      outputs_->output_seconds = c.output_seconds;
+    write_summary(wall_seconds(), false);  // by every process: it gathers their memory peaks
+    if (outputs_)
+      rewrite_outputs_up_to_checkpoint(newton_rows);
+    run_steps();
+    return true;
+  }
+
+  template <int dim>
+  void Simulation<dim>::rewrite_outputs_up_to_checkpoint(const std::string &newton_rows)
+  {
+    const fs::path directory = scene_.output_directory;
     // The collections list the frames up to the checkpoint before later frames go, so
     // that no collection ever names a missing file.
     std::vector<std::pair<double, std::string>> solution, reference, obstacles;
@@ -194,10 +207,8 @@ namespace ritr
     outputs_->newton_log << newton_rows;
     flush_logs();
 
-    std::cout << "ritr: " << scene_.parameter_file << ": resuming after step " << step_ << '/' << n_steps
+    std::cout << "ritr: " << scene_.parameter_file << ": resuming after step " << step_ << '/' << scene_.n_steps()
               << " (t = " << time_ << ") -> " << scene_.output_directory << std::endl;
-    run_steps();
-    return true;
   }
 
   template class Simulation<1>;

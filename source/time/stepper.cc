@@ -128,6 +128,19 @@ namespace ritr
     settings.newton.tolerance = scene.dynamic() ? scene.solver.newton_tolerance * scene.time_step * length :
                                                   scene.solver.static_tolerance * length;
     settings.newton.monitor     = monitor;
+    if (problem.work_share.distributed())
+      {
+        // Trilinos solves the projected Newton system; the trust region (the default) and the
+        // shifted exact Hessian need CHOLMOD's factor of the whole matrix.
+        const HessianProjection p = scene.solver.hessian_projection;
+        if (p == HessianProjection::never || p == HessianProjection::adaptive)
+          throw InputError(scene.where("Solver/hessian projection") + ": '" +
+                           std::string(name_of(hessian_projection_names, p)) +
+                           "' runs on one process only; on several, use always (or trust-region, which becomes always)");
+        settings.newton.projection         = HessianProjection::always;
+        settings.newton.work_share         = &problem.work_share;
+        settings.newton.distributed_solver = scene.solver.distributed_solver;
+      }
     settings.friction_iterations = scene.contact.friction_iterations;
     settings.barrier_stiffness   = scene.contact.barrier_stiffness;
     return settings;

@@ -35,6 +35,13 @@ namespace ritr
     // with r-adaptivity), elasticity, body forces, contact barrier and friction, and with
     // r-adaptivity the reference measure barrier.
     std::unique_ptr<TermSum<dim>>            terms;
+    // A run shared among processes (parallel/work_share.h): who owns which nodes, cells and
+    // stencils. The cell terms are built on `owned_mesh` (the whole mesh's nodes, this
+    // process's cells) and its materials; serial runs leave both empty and build them on the
+    // whole mesh.
+    WorkShare                                work_share;
+    SimplexMesh<dim>                         owned_mesh;
+    std::unique_ptr<CellMaterials<dim>>      owned_materials;
     std::vector<bool>                        kinematic;  // prescribed state entries
     // Dirichlet nodes whose condition lets r-ITR slide them (`sliding reference nodes`), with
     // their condition, and that entry of the first such condition (for errors).
@@ -60,13 +67,15 @@ namespace ritr
   private:
     Problem() = default;
     template <int d>
-    friend std::unique_ptr<Problem<d>> make_problem(const Scene &scene);
+    friend std::unique_ptr<Problem<d>> make_problem(const Scene &scene, const WorkShare &share);
 
     void build_mesh_and_materials();
     void set_initial_velocity();
     void build_obstacles();
     void build_dirichlet_conditions();
     void build_contact();
+    // The cells this process assembles (all of them in a serial run).
+    void share_cells();
     void build_terms();
     // initial_state.cc: the initial state's checks, each naming the body or obstacle at fault.
     void        check_initial_state() const;
@@ -83,7 +92,8 @@ namespace ritr
     std::optional<Expression<dim>>                     load_factor_;
   };
 
-  // Builds and checks the problem of `scene`; throws InputError on bad input.
+  // Builds and checks the problem of `scene`; throws InputError on bad input. With a share
+  // of more than one process, its work is split among them (fixed meshes only).
   template <int dim>
-  std::unique_ptr<Problem<dim>> make_problem(const Scene &scene);
+  std::unique_ptr<Problem<dim>> make_problem(const Scene &scene, const WorkShare &share = WorkShare());
 } // namespace ritr

@@ -9,6 +9,7 @@
 #include <ritr/elasticity/material.h>
 #include <ritr/mesh/mesh_builder.h>
 #include <ritr/adaptivity/ritr_options.h>
+#include <ritr/solver/distributed_solver.h>
 #include <ritr/solver/hessian_projection.h>
 
 #include <map>
@@ -106,6 +107,7 @@ namespace ritr
     unsigned int threads          = 0;  // 0: all cores
     bool         newton_log       = false;  // newton.csv: one row per Newton iteration
     HessianProjection hessian_projection = HessianProjection::trust_region;
+    DistributedSolver distributed_solver = DistributedSolver::amg;  // runs under mpirun
 
     // Subsection Solver: its entries declared with this struct's values as defaults, and
     // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.

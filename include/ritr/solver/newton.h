@@ -9,6 +9,7 @@
 // instead. The inner solve over the state and the outer line-search solves over the
 // reference mesh (adaptivity/line_search_outer.h) both run on it.
 #include <ritr/common/triplets.h>
+#include <ritr/solver/distributed_linear_system.h>
 #include <ritr/solver/hessian_projection.h>
 #include <ritr/solver/reduced_system.h>
 #include <ritr/solver/sparse_cholesky.h>
@@ -16,6 +17,7 @@
 #include <Eigen/Sparse>
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -119,6 +121,11 @@ namespace ritr
     bool         start_exact = false;
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
+    // A run shared among processes (null or one process: serial, CHOLMOD): the objective's
+    // values and gradients are whole, its Hessian this process's part, and the Newton system
+    // is solved by Trilinos (projected line-search Newton only: HessianProjection::always).
+    const WorkShare  *work_share        = nullptr;
+    DistributedSolver distributed_solver = DistributedSolver::direct;
   };
 
   enum class NewtonStatus
@@ -151,6 +158,10 @@ namespace ritr
 
     const SparseCholesky &linear_solver() const { return cholesky_; }
     double seconds_in_linear_solves() const { return linear_seconds_; }
+    // Symbolic analyses (new patterns) and numeric factorizations, of whichever linear
+    // solver the solves used.
+    unsigned int n_symbolic_analyses() const;
+    unsigned int n_factorizations() const;
 
   private:
     // What a trust-region solve carries from one iteration to the next.
@@ -178,6 +189,7 @@ namespace ritr
     Triplets       exact_triplets_;  // its entries, kept so that their storage is reused
     TripletChanges projection_changes_;  // exact_triplets_ to the projected Hessian's
     SparseCholesky cholesky_;
+    std::unique_ptr<DistributedLinearSystem> distributed_;  // a run shared among processes
     double         linear_seconds_ = 0;
   };
 } // namespace ritr

@@ -4,6 +4,7 @@
 // objective R(z, u) of all of them (the outer solve over u). It also holds the collision
 // geometry the contact terms share (none without contact): setting the reference mesh sets
 // its weights, and the candidates an evaluation looks at are built from it.
+#include <ritr/parallel/work_share.h>
 #include <ritr/terms/energy_term.h>
 
 #include <memory>
@@ -44,11 +45,20 @@ namespace ritr
     void set_reference(const Eigen::VectorXd &u);
     const Eigen::VectorXd &reference() const { return reference_; }
 
+    // A run shared among processes: the cell terms were built on this process's cells, the
+    // candidates below are this process's stencils, and energies, energy gradients, step
+    // bounds and distances are reduced over the processes (Hessians stay this process's
+    // part). The share must outlive the sum; without one the sum is serial.
+    void              share_work(const WorkShare &share) { share_ = &share; }
+    const WorkShare  &work_share() const { return share_ ? *share_ : serial_; }
+
     bool                      has_contact() const { return collisions_ != nullptr; }
     const CollisionMesh<dim> &collision_mesh() const { return *collisions_; }
-    // Empty without contact.
+    // Empty without contact; shared among processes, this process's.
     CollisionCandidates candidates_at(const Eigen::VectorXd &z) const;
     CollisionCandidates candidates_along(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+    // The smallest distance of the candidates' pairs within dhat (over all processes).
+    double active_minimum_distance(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
 
     // Which terms a gradient sums.
     enum class Select
@@ -93,8 +103,13 @@ namespace ritr
   private:
     double sum(const Eigen::VectorXd &z, const CollisionCandidates &candidates, bool state_terms_only) const;
 
+    // This process's part of the candidates.
+    CollisionCandidates owned(CollisionCandidates candidates) const;
+
     const SimplexMesh<dim>                        &mesh_;
     CollisionMesh<dim>                            *collisions_;
+    const WorkShare                               *share_ = nullptr;
+    WorkShare                                      serial_;
     std::vector<std::unique_ptr<EnergyTerm<dim>>> terms_;
     Eigen::VectorXd                                reference_;
   };

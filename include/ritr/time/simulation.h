@@ -19,8 +19,10 @@ namespace ritr
   class Simulation
   {
   public:
-    // Builds everything and checks the initial state; throws InputError on bad input.
-    explicit Simulation(const Scene &scene);
+    // Builds everything and checks the initial state; throws InputError on bad input. On
+    // several processes (`share`), every process runs the simulation together and the
+    // writer alone (rank 0) writes the outputs, which are then those of a serial run.
+    explicit Simulation(const Scene &scene, const WorkShare &share = WorkShare());
     ~Simulation();
 
     // Takes the scene's output directory for this process (creating it for a new run): no
@@ -59,13 +61,19 @@ namespace ritr
     Eigen::VectorXd state() const;  // z = [x, obstacle vertices]
     // The steps that write VTU frames and a checkpoint: the first and last, every `output every`.
     bool writes_frame(unsigned int step) const;
+    // claim_output_directory()'s work, by the process that writes.
+    void claim_directory(bool resuming);
     void write_step_output(unsigned int step);
     // The time loop from step_ to the end, with its outputs; throws ConvergenceError.
     void run_steps();
-    // RunOutputs for the scene's directory, its CSV files holding their headers.
+    // RunOutputs for the scene's directory, its CSV files holding their headers (the writer's
+    // only: the other processes of a shared run have none, and write nothing).
     void create_outputs();
+    bool is_writer() const { return problem_->work_share.is_writer(); }
     void append_log_row(const StepReport &r);
     void flush_logs() const;
+    // resume(): the writer's files as they were at the checkpoint (collections and logs).
+    void rewrite_outputs_up_to_checkpoint(const std::string &newton_rows);
     // checkpoint.bin for the state after step_ (simulation_resume.cc).
     void write_checkpoint() const;
     // The per-frame files of the frames up to `last_step`, as named in the output directory.
@@ -95,7 +103,8 @@ namespace ritr
     std::vector<StepReport>                    history_;
     std::vector<std::string>                   invariant_violations_;
     std::vector<std::pair<std::string, double>> last_step_terms_;  // summary.json's final_energy_terms, at the end
-    std::unique_ptr<OutputDirectoryLock>       directory_lock_;  // claim_output_directory()
+    std::unique_ptr<OutputDirectoryLock>       directory_lock_;  // claim_output_directory(), the writer's
+    bool                                       claimed_ = false;  // by every process
     std::unique_ptr<RunOutputs>                outputs_;
     unsigned int                               logged_step_ = 0, logged_solve_ = 0;
     std::uint64_t                              scene_hash_ = 0;  // scene_fingerprint()
