@@ -1,10 +1,11 @@
 #pragma once
 // The Newton system over the free unknowns: the lower triangle of the Hessian's free-free
 // block as a compressed matrix, with the coupling to prescribed entries moved to the
-// right-hand side. While the Hessian's triplet list keeps its sequence of (row, column)
-// pairs -- every iteration whose contact set did not change -- the matrix's pattern is
-// reused and each triplet is added straight into its slot, in the same order as
-// setFromTriplets would sum it (the same values, bit for bit).
+// right-hand side. The matrix's pattern is kept while the Hessian's list gives the same one:
+// each triplet is added straight into its slot, in the same order as setFromTriplets would
+// sum it (the same values, bit for bit). Where a list departs from the last one's sequence of
+// (row, column) pairs (a changed contact set), only its rest is looked up in the pattern, and
+// the pattern is rebuilt only when the list's own pattern differs from it.
 #include <ritr/common/triplets.h>
 
 #include <Eigen/Sparse>
@@ -31,9 +32,15 @@ namespace ritr
   private:
     void build_pattern(const Triplets &hessian, const std::vector<int> &free_index,
                        int n_free);
-    // Adds the free-free values into their slots; with `check_structure`, false (and a
-    // partial sum) as soon as an entry is not where the pattern expects it.
-    bool fill(const Triplets &hessian, bool check_structure);
+    // Slots of the triplets from `first` on in the current pattern; false if one is missing.
+    bool map_into_pattern(const Triplets &hessian, std::size_t first);
+    // True if every off-diagonal entry of the pattern has a triplet (no leftover entries).
+    bool pattern_is_exact() const;
+    void clear_values();
+    // Adds the values of the leading triplets whose (row, column) match the last list's;
+    // returns how many did.
+    std::size_t add_matching(const Triplets &hessian);
+    void        add_values(const Triplets &hessian, std::size_t first);
 
     Eigen::SparseMatrix<double> matrix_;
     std::vector<int>            rows_, columns_, free_index_;

@@ -8,6 +8,10 @@
 // above, a 3D wedge of 943 vertices 17 against 6.7 ms (182) and a 2D ball of 12,417 vertices
 // 92 against 52 ms (186). (Nearly diagonal matrices solved many times, where a solve's call
 // overhead costs more than its arithmetic, have their own inverse: shifted_sparse_inverse.h.)
+// The fill-reducing ordering is CHOLMOD's default: AMD, and METIS as well when AMD's factor is
+// large, the better of the two taken. In 3D that is METIS: on the 6,161-vertex drop-through
+// (18,483 unknowns) AMD alone gives 1.22x the factor's entries and 1.6x its flops, and its first
+// 25 steps' linear solves take 1.34x as long; METIS or NESDIS alone is within 4 % of the default.
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 
