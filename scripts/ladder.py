@@ -20,7 +20,9 @@ over a conforming space of deformations, so the lower equilibrium is the more ac
 
 `--ritr-rungs` adds r-ITR runs on refined meshes, `--ritr-variant NAME PATH=VALUE` an r-ITR run
 on the scene's own mesh with one entry changed (e.g. the deep punch with its base's reference
-nodes held); `--pass-below` and `--corner-touch` measure the last frame
+nodes held); `--mpirun-from K` runs the fixed rungs of K and more refinements on `--ranks` processes (`mpirun`,
+doc/parallel.md), their memory the sum of the processes' peaks; `--pass-below` and
+`--corner-touch` measure the last frame
 (scripts/frame_metrics.py). Every run of a dynamic scene also records its kinetic energy in each
 output frame (`kinetic_energy_over_time`). `--quick` runs two steps of r-ITR and of the two
 coarsest rungs, so that a scene cannot rot unnoticed. The exit code is 1 if any run failed or
@@ -85,7 +87,7 @@ def material_densities(scene_text):
                         if path.startswith("Material ") and path.endswith("/density")})
 
 
-def run_rung(args, scene_text, name, overrides, work):
+def run_rung(args, scene_text, name, overrides, work, processes=1):
     directory = os.path.join(work, name)
     overrides = dict(overrides, **{"output directory": directory})
     if args.quick:
@@ -93,8 +95,13 @@ def run_rung(args, scene_text, name, overrides, work):
         overrides["end time"] = repr(2 * step)
         overrides["output every"] = "1"
     prm = write_variant(args.scene, overrides, os.path.join(work, name + ".prm"))
-    code, wall, rss = measure([args.ritr, prm], os.path.join(work, name + ".log"))
+    command = [args.ritr, prm]
+    if processes > 1:
+        command = ["mpirun", "--oversubscribe", "-np", str(processes)] + command
+    code, wall, rss = measure(command, os.path.join(work, name + ".log"))
     run = {"name": name, "exit_code": code, "wall_seconds": wall, "peak_rss_bytes": rss, "directory": directory}
+    if processes > 1:
+        run["mpi_ranks"] = processes
     try:
         with open(os.path.join(directory, "summary.json")) as f:
             summary = json.load(f)
@@ -102,6 +109,8 @@ def run_rung(args, scene_text, name, overrides, work):
                     "total_wall_seconds", "invariant_violations", "failure"):
             if key in summary:
                 run[key] = summary[key]
+        if processes > 1 and "peak_rss_bytes_per_process" in summary:
+            run["peak_rss_bytes"] = sum(summary["peak_rss_bytes_per_process"])  # wait4 sees one process
     except (OSError, ValueError) as e:
         run["failure"] = f"no summary.json: {e}"
     print(f"ladder: {name}: exit {code}, {run.get('n_vertices', '?')} vertices, {wall:.1f} s, "
@@ -238,6 +247,9 @@ def main():
                    help="refinements of r-ITR runs besides the scene's own mesh (r-ITR under refinement)")
     p.add_argument("--ritr-variant", nargs=2, action="append", default=[], metavar=("NAME", "PATH=VALUE"),
                    help="an extra r-ITR run ritr_NAME on the scene's own mesh with one entry overridden")
+    p.add_argument("--mpirun-from", type=int, metavar="K",
+                   help="fixed rungs of K and more refinements run under mpirun on --ranks processes")
+    p.add_argument("--ranks", type=int, default=2, help="processes of the --mpirun-from rungs")
     p.add_argument("--quick", action="store_true")
     p.add_argument("--accuracy", choices=("hausdorff", "energy"), default="hausdorff",
                    help="what ranks the runs: mean Hausdorff distance to the finest rung (dynamics) or the "
@@ -265,6 +277,9 @@ def main():
     if any(name.startswith("r") and name[1:].isdigit() for name, _ in args.ritr_variant):
         p.error("--ritr-variant: names rN are the refined r-ITR runs'")
     common = dict(item.split("=", 1) for item in args.set)
+    if args.mpirun_from is not None:  # containers and CI machines often run as root
+        os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     rungs = sorted(args.fixed)[:2] if args.quick else sorted(args.fixed)
     work = args.work or tempfile.mkdtemp(prefix="ladder-")
     os.makedirs(work, exist_ok=True)
@@ -272,7 +287,9 @@ def main():
 
     def rung(name, k, adaptivity, extra=None, factor=1):
         overrides = {**common, **rung_overrides(scene_text, k, adaptivity, factor), **(extra or {})}
-        return dict(run_rung(args, scene_text, name, overrides, work), refinements=k, subdivision_factor=factor,
+        shared = not adaptivity and args.mpirun_from is not None and k >= args.mpirun_from
+        processes = args.ranks if shared else 1
+        return dict(run_rung(args, scene_text, name, overrides, work, processes), refinements=k, subdivision_factor=factor,
                     adaptivity=adaptivity, **({"overrides": extra} if extra else {}))
 
     # runs[0] is r-ITR on the scene's own mesh, the fixed rungs follow from coarsest to finest (the

@@ -96,7 +96,7 @@ namespace
             << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
             << scene.n_steps() << " steps"
             << (share.distributed() ? " on " + std::to_string(share.size()) +
-                                        (share.size() == 1 ? " process" : " processes") + " (projected Newton, " +
+                                        (share.size() == 1 ? " process" : " processes") + " (" +
                                         ritr::name_of(ritr::distributed_solver_names, scene.solver.distributed_solver) +
                                         " solver)" :
                                       std::string())

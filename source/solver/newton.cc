@@ -24,14 +24,14 @@ namespace ritr
       if (!kinematic[i])
         free_index[i] = n_free++;
 
-    // Shared among processes: Trilinos solves the projected Newton system (the trust region's
-    // CG on the exact Hessian and the shifted exact Hessian need CHOLMOD's factor).
+    // Shared among processes: Trilinos solves (or, in the trust region, preconditions with)
+    // the projected Newton system; the shifted exact Hessian needs CHOLMOD's factor.
     const bool distributed = settings.work_share && settings.work_share->distributed();
     std::vector<int> free_entry;
     if (distributed)
       {
-        if (settings.projection != HessianProjection::always)
-          throw std::logic_error("NewtonSolver: a run shared among processes takes projected Newton only");
+        if (settings.projection != HessianProjection::always && settings.projection != HessianProjection::trust_region)
+          throw std::logic_error("NewtonSolver: a run shared among processes takes projected Newton or the trust region");
         if (!distributed_)
           distributed_ = std::make_unique<DistributedLinearSystem>(*settings.work_share, settings.distributed_solver);
         free_entry.resize(n_free);
