@@ -137,16 +137,6 @@ namespace ritr
 
   Eigen::VectorXd DistributedLinearSystem::solve(const Eigen::VectorXd &rhs)
   {
-    return apply_inverse(rhs, false);
-  }
-
-  Eigen::VectorXd DistributedLinearSystem::precondition(const Eigen::VectorXd &rhs)
-  {
-    return apply_inverse(rhs, true);
-  }
-
-  Eigen::VectorXd DistributedLinearSystem::apply_inverse(const Eigen::VectorXd &rhs, const bool one_cycle)
-  {
     Trilinos      &t = *trilinos_;
     TW::MPI::Vector b(t.owned, share_.communicator()), x(t.owned, share_.communicator());
     for (std::size_t f = 0; f < row_of_.size(); ++f)
@@ -163,8 +153,6 @@ namespace ritr
         if (error)
           throw std::runtime_error("MUMPS' solve failed (error " + std::to_string(error) + ")");
       }
-    else if (one_cycle)
-      t.amg->vmult(x, b);
     else
       {
         // The barrier makes the projected Hessian badly conditioned near contact: a residual of

@@ -24,14 +24,17 @@ namespace ritr
       if (!kinematic[i])
         free_index[i] = n_free++;
 
-    // Shared among processes: Trilinos solves (or, in the trust region, preconditions with)
-    // the projected Newton system; the shifted exact Hessian needs CHOLMOD's factor.
+    // Shared among processes: Trilinos solves the projected Newton system, or with the direct
+    // solver preconditions the trust region's CG; the shifted exact Hessian needs CHOLMOD's
+    // factor, and the trust region an exact inverse of the projected Hessian.
     const bool distributed = settings.work_share && settings.work_share->distributed();
     std::vector<int> free_entry;
     if (distributed)
       {
-        if (settings.projection != HessianProjection::always && settings.projection != HessianProjection::trust_region)
-          throw std::logic_error("NewtonSolver: a run shared among processes takes projected Newton or the trust region");
+        const bool trust_region_direct = settings.projection == HessianProjection::trust_region &&
+                                         settings.distributed_solver == DistributedSolver::direct;
+        if (settings.projection != HessianProjection::always && !trust_region_direct)
+          throw std::logic_error("NewtonSolver: a shared run takes projected Newton, or the trust region with the direct solver");
         if (!distributed_)
           distributed_ = std::make_unique<DistributedLinearSystem>(*settings.work_share, settings.distributed_solver);
         free_entry.resize(n_free);
@@ -84,22 +87,21 @@ namespace ritr
             exact_system_.assemble(exact_triplets_, free_index, n_free, dz, rhs);
             system_.assemble_changed(exact_system_, projection_changes_);
           }
-        else if (distributed)
-          {
-            // This process's Hessian entries and their coupling to the prescribed step; the
-            // coupling is summed over the processes like the gradient was.
-            h.clear();
-            objective.hessian(z, h, !exact);
-            Eigen::VectorXd coupling = Eigen::VectorXd::Zero(n_free);
-            system_.assemble(h, free_index, n_free, dz, coupling);
-            settings.work_share->sum(coupling);
-            rhs += coupling;
-          }
         else
           {
             h.clear();
             objective.hessian(z, h, !exact);
-            system_.assemble(h, free_index, n_free, dz, rhs);
+            // Shared among processes, these are this process's entries: their coupling to the
+            // prescribed step is summed over the processes like the gradient was.
+            Eigen::VectorXd coupling;
+            if (distributed)
+              coupling.setZero(n_free);
+            system_.assemble(h, free_index, n_free, dz, distributed ? coupling : rhs);
+            if (distributed)
+              {
+                settings.work_share->sum(coupling);
+                rhs += coupling;
+              }
           }
         auto   start = std::chrono::steady_clock::now();
         double shift = 0;

@@ -36,9 +36,7 @@ namespace ritr
     const double          gradient_norm = g_free.norm();
 
     // The region's norm is that of the factorized matrix M (projected Hessian plus `shift`).
-    // Shared among processes, each holds its stencils' part of H, and M is Trilinos' (its
-    // inverse, or one multigrid V-cycle: any symmetric positive definite preconditioner
-    // defines a region).
+    // Shared among processes, each holds its stencils' part of H, and M^-1 is MUMPS' solve.
     const WorkShare *share = settings.work_share && settings.work_share->distributed() ? settings.work_share : nullptr;
     const Eigen::SparseMatrix<double> &H = exact_system_.matrix();
     const LinearMap apply = [&](const Eigen::VectorXd &v) {
@@ -49,7 +47,7 @@ namespace ritr
     };
     const LinearMap precondition = [&](const Eigen::VectorXd &v) {
       const auto            start = std::chrono::steady_clock::now();
-      const Eigen::VectorXd r     = share ? distributed_->precondition(v) : cholesky_.solve(v);
+      const Eigen::VectorXd r     = share ? distributed_->solve(v) : cholesky_.solve(v);
       linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return r;
     };

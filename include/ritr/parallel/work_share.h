@@ -57,7 +57,6 @@ namespace ritr
     unsigned int entry_owner(const unsigned int entry) const { return node_owner(entry / dim_); }
     unsigned int entry_component(const unsigned int entry) const { return entry % dim_; }
     unsigned int dim() const { return dim_; }
-    bool         owns_node(const unsigned int node) const { return node_owner(node) == rank_; }
     bool         owns_cell(const unsigned int cell) const { return cell_owner_.empty() || cell_owner_[cell] == rank_; }
     // A contact candidate belongs to one process by a hash of its primitives: the surface is
     // small, so the stencils are spread evenly rather than by their nodes' owners.

@@ -7,9 +7,8 @@
 //
 // Two solvers: a direct one (Amesos with MUMPS, a distributed LU), or conjugate gradients
 // preconditioned by ML's algebraic multigrid with the translations as its near null space.
-// The projected Newton matrix is symmetric positive definite, which both need. The trust
-// region's CG on the exact Hessian takes one application of the preconditioner per iteration
-// instead of a solve: the direct solver's inverse, or one multigrid V-cycle.
+// The projected Newton matrix is symmetric positive definite, which both need. With the
+// direct solver, its solves also precondition the trust region's CG on the exact Hessian.
 #include <ritr/parallel/work_share.h>
 #include <ritr/solver/distributed_solver.h>
 
@@ -33,9 +32,6 @@ namespace ritr
     void factorize(const Eigen::SparseMatrix<double> &local_lower, const std::vector<int> &free_entry);
     // `rhs` whole and the same on every process; the solution whole on every process.
     Eigen::VectorXd solve(const Eigen::VectorXd &rhs);
-    // An approximate inverse of the matrix, symmetric positive definite: the direct solver's
-    // solve, or one V-cycle of the multigrid. `rhs` and the result as for solve().
-    Eigen::VectorXd precondition(const Eigen::VectorXd &rhs);
 
     unsigned int n_symbolic_analyses() const { return n_patterns_; }
     unsigned int n_factorizations() const { return n_factorizations_; }
@@ -44,7 +40,6 @@ namespace ritr
   private:
     struct Trilinos;  // the deal.II/Trilinos objects, kept out of this header
     void build_pattern(const Eigen::SparseMatrix<double> &local_lower, const std::vector<int> &free_entry);
-    Eigen::VectorXd apply_inverse(const Eigen::VectorXd &rhs, bool one_cycle);
 
     const WorkShare          &share_;
     const DistributedSolver   solver_;

@@ -123,7 +123,7 @@ namespace ritr
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
     // A run shared among processes (null or one process: serial, CHOLMOD): the objective's
     // values and gradients are whole, its Hessian this process's part, and the Newton system
-    // is solved by Trilinos (projected line-search Newton only: HessianProjection::always).
+    // is solved by Trilinos (HessianProjection::always, or trust_region with the direct solver).
     const WorkShare  *work_share        = nullptr;
     DistributedSolver distributed_solver = DistributedSolver::direct;
   };
