@@ -3,6 +3,7 @@
 stress measure, with its edges and the obstacles, beside the (adapted) reference mesh.
 
     scripts/render.py RUN_DIR [--frames 0 -1] [--out DIR] [--field strain] [--no-animation]
+                      [--camera X Y Z --up X Y Z --zoom F]  (3D: the view)
 
 writes OUT/figure-NNNNN.png for the chosen frames (indices into solution.pvd; negative ones
 count from the end) and, unless --no-animation, OUT/animation/frame-NNNNN.png for every frame
@@ -36,6 +37,12 @@ def parse_arguments():
                         help="colour of the deformed mesh (default: strain)")
     parser.add_argument("--size", type=int, nargs=2, default=[1600, 800], metavar=("W", "H"))
     parser.add_argument("--no-animation", action="store_true", help="draw only the figure")
+    parser.add_argument("--camera", type=float, nargs=3, default=[1, -1.5, 1], metavar=("X", "Y", "Z"),
+                        help="3D: direction from the scene's centre to the camera (default: 1 -1.5 1)")
+    parser.add_argument("--up", type=float, nargs=3, default=[0, 0, 1], metavar=("X", "Y", "Z"),
+                        help="3D: the direction drawn upwards (default: 0 0 1)")
+    parser.add_argument("--zoom", type=float, default=1.0,
+                        help="3D: magnification after framing the whole scene (default: 1)")
     return parser.parse_args()
 
 
@@ -72,8 +79,9 @@ def colour_range(reader, times, field):
 class Scene:
     """The pipeline: deformed mesh and obstacles on the left, reference mesh on the right."""
 
-    def __init__(self, run_dir, field, size):
+    def __init__(self, run_dir, field, size, camera, up, zoom):
         self.run_dir = run_dir
+        self.camera, self.up, self.zoom = camera, up, zoom
         self.solution = pv.PVDReader(FileName=os.path.join(run_dir, "solution.pvd"))
         self.times = time_steps(self.solution)
         self.view = pv.CreateRenderView()
@@ -156,9 +164,10 @@ class Scene:
         centre = [(bounds[2 * i] + bounds[2 * i + 1]) / 2 for i in range(3)]
         if bounds[5] - bounds[4] > 1e-12:  # 3D: an oblique view from the front
             self.view.CameraFocalPoint = centre
-            self.view.CameraPosition = [centre[0] + 1, centre[1] - 1.5, centre[2] + 1]
-            self.view.CameraViewUp = [0, 0, 1]
-            self.view.ResetCamera(False)
+            self.view.CameraPosition = [c + d for c, d in zip(centre, self.camera)]
+            self.view.CameraViewUp = self.up
+            self.view.ResetCamera(False)  # fits the bounding sphere: wide rows of bodies end up small
+            pv.GetActiveCamera().Dolly(self.zoom)
             return
         # 2D: fill the picture with the bounds of both meshes and the obstacles.
         self.view.InteractionMode = "2D"
@@ -198,7 +207,7 @@ def main():
         sys.exit("render: %s has no solution.pvd (not a ritr output directory?)" % args.run_dir)
     out = args.out or os.path.join(args.run_dir, "pictures")
     os.makedirs(out, exist_ok=True)
-    scene = Scene(args.run_dir, args.field, args.size)
+    scene = Scene(args.run_dir, args.field, args.size, args.camera, args.up, args.zoom)
     count = len(scene.times)
     for frame in args.frames:
         if not -count <= frame < count:

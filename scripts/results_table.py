@@ -28,12 +28,15 @@ SCENES = [
     ("deep_punch_036", "Deep punch to 0.36 (Fig. 16)"),
     ("static_drop_through", "Static drop-through (Fig. 18)"),
     ("stamping", "Stamping, 2D sections (Fig. 23)"),
+    ("stamping_3d", "Stamping, 3D (Fig. 23)"),
     ("bending_beam", "Bending beam, statics (Fig. 20)"),
     ("ball_on_spikes", "Ball on spikes, dynamics (Fig. 6)"),
     ("bar_impact", "Bar impact at 80 m/s (Fig. 13)"),
     ("masticator", "Masticator (Figs 3, 4)"),
     ("varying_friction", "Wedge through a gap, mu 0 (Fig. 21)"),
     ("drop_through_3d", "3D drop-through (Fig. 2)"),
+    ("chicken_drop", "Chicken drop, 3D (Fig. 10)"),
+    ("jelly_poke", "Jelly poke, 3D (Fig. 1)"),
 ]
 
 
