@@ -455,7 +455,7 @@ def namespace(name, result):
         phase=phase, kinetic_peak=kinetic_peak, kinetic_gap=kinetic_gap, phase_table=phase_table,
         corners=corners_on_vertex, verdict=lambda: verdict_of(result), plots=lambda: plot_links(name, result),
         sweep_run=sweep_run,
-        abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip)
+        abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip, dict=dict)
 
 
 PLACEHOLDER = re.compile(r"\{\{(.+?)\}\}")
