@@ -87,6 +87,29 @@ def material_densities(scene_text):
                         if path.startswith("Material ") and path.endswith("/density")})
 
 
+def earlier_run(measured, prm_text, directory):
+    """What an earlier ladder left of a run in the same work directory (`--reuse`): "finished"
+    with its recorded measurement when it ran the same input to its end, "stopped" when it left a
+    checkpoint to resume from, else None (run it afresh)."""
+    try:
+        with open(measured) as f:
+            earlier = json.load(f)
+    except (OSError, ValueError):
+        return None
+    if earlier.get("prm") != prm_text:
+        return None
+    try:
+        with open(os.path.join(directory, "summary.json")) as f:
+            complete = json.load(f).get("complete", False)
+    except (OSError, ValueError):
+        complete = False
+    if complete and earlier.get("exit_code") == 0:
+        return "finished", earlier
+    if os.path.exists(os.path.join(directory, "checkpoint.bin")):
+        return "stopped", earlier
+    return None
+
+
 def run_rung(args, scene_text, name, overrides, work, processes=1):
     directory = os.path.join(work, name)
     overrides = dict(overrides, **{"output directory": directory})
@@ -98,7 +121,22 @@ def run_rung(args, scene_text, name, overrides, work, processes=1):
     command = [args.ritr, prm]
     if processes > 1:
         command = ["mpirun", "--oversubscribe", "-np", str(processes)] + command
-    code, wall, rss = measure(command, os.path.join(work, name + ".log"))
+    measured = os.path.join(work, name + ".measured.json")
+    with open(prm) as f:
+        prm_text = f.read()
+    earlier = earlier_run(measured, prm_text, directory) if args.reuse else None
+    if earlier and earlier[0] == "finished":
+        code, wall, rss = (earlier[1][key] for key in ("exit_code", "wall_seconds", "peak_rss_bytes"))
+        print(f"ladder: {name}: the finished run in {directory} is reused", flush=True)
+    else:
+        with open(measured, "w") as f:  # written first, so that a stopped run can be resumed
+            json.dump({"prm": prm_text}, f)
+        if earlier:  # a stopped run goes on from its checkpoint; its times add up in summary.json
+            print(f"ladder: {name}: resuming the stopped run in {directory}", flush=True)
+            command = command + ["--resume"]
+        code, wall, rss = measure(command, os.path.join(work, name + (".resumed.log" if earlier else ".log")))
+        with open(measured, "w") as f:
+            json.dump({"prm": prm_text, "exit_code": code, "wall_seconds": wall, "peak_rss_bytes": rss}, f)
     run = {"name": name, "exit_code": code, "wall_seconds": wall, "peak_rss_bytes": rss, "directory": directory}
     if processes > 1:
         run["mpi_ranks"] = processes
@@ -265,6 +303,9 @@ def main():
     p.add_argument("--summary", action="store_true",
                    help="print one line comparing r-ITR with the fixed mesh of its size instead of the JSON")
     p.add_argument("--work", help="directory for the runs (default: a temporary one)")
+    p.add_argument("--reuse", action="store_true",
+                   help="runs that an earlier ladder in --work finished with the same input are taken as they "
+                        "are; those it left stopped are resumed from their checkpoints")
     p.add_argument("--ritr", default=os.path.join(build, "ritr"))
     p.add_argument("--compare", default=os.path.join(build, "ritr-compare"))
     args = p.parse_args()

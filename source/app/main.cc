@@ -15,11 +15,19 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace
 {
+  std::string number_text(const double value)
+  {
+    std::ostringstream s;
+    s << value;
+    return s.str();
+  }
+
   void print_usage(std::ostream &out)
   {
     out << "usage: ritr SCENE.prm           run a scene (outputs go to its 'output directory');\n"
@@ -94,7 +102,9 @@ namespace
       {
         out << "ritr: " << scene.parameter_file << ": " << dim << "D " << scene.mode << ", "
             << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
-            << scene.n_steps() << " steps"
+            << simulation.scene().n_steps() << " steps"
+            << (scene.start_from.empty() ? std::string() :
+                                           " from t = " + number_text(simulation.scene().start_time) + " (" + scene.start_from + ")")
             << (share.distributed() ? " on " + std::to_string(share.size()) +
                                         (share.size() == 1 ? " process" : " processes") + " (" +
                                         ritr::name_of(ritr::distributed_solver_names, scene.solver.distributed_solver) +

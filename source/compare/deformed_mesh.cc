@@ -1,4 +1,5 @@
 #include <ritr/compare/deformed_mesh.h>
+#include <ritr/compare/vtk_reader.h>
 
 #include <cmath>
 
@@ -62,5 +63,10 @@ namespace ritr::compare
     for (double &c : weighted_sum)
       c /= total_measure;
     return weighted_sum;
+  }
+  DeformedMesh read_deformed_mesh(const std::filesystem::path &vtu_file)
+  {
+    VtuGrid grid = read_vtu(vtu_file);
+    return {grid.dim, std::move(grid.points), std::move(grid.cells)};
   }
 } // namespace ritr::compare

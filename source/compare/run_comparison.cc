@@ -70,7 +70,7 @@ namespace ritr::compare
         });
         if (b == frames_b.end() || !same_time(a.time, b->time))
           continue;
-        const DeformedMesh mesh_a = read_vtu(a.file), mesh_b = read_vtu(b->file);
+        const DeformedMesh mesh_a = read_deformed_mesh(a.file), mesh_b = read_deformed_mesh(b->file);
         if (mesh_a.dim != mesh_b.dim)
           throw InputError(b->file.string() + ": a " + std::to_string(mesh_b.dim) + "D mesh, but " +
                            a.file.string() + " is " + std::to_string(mesh_a.dim) + "D");

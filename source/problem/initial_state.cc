@@ -64,7 +64,9 @@ namespace ritr
     check_coordinates();
     check_element_measures();
     if (!(min_deformed_jacobian(mesh, initial_positions, initial_reference) > 0))
-      throw InputError(scene.parameter_file + ": Dirichlet: the initial prescribed displacement inverts elements");
+      throw InputError(scene.start_from.empty() ?
+                         scene.parameter_file + ": Dirichlet: the initial prescribed displacement inverts elements" :
+                         scene.where("start from") + ": the frame's state inverts elements of the scene's mesh");
     if (collisions)
       {
         Eigen::VectorXd z(initial_positions.size() + initial_obstacle_positions.size());

@@ -55,6 +55,7 @@ namespace ritr
     p->set_initial_velocity();
     p->build_obstacles();
     p->build_dirichlet_conditions();
+    p->start_from_frame();
     p->build_contact();
     p->share_cells();
     p->build_terms();

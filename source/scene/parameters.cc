@@ -37,6 +37,7 @@ namespace ritr
       prm.declare_entry("output directory", defaults.output_directory, Patterns::Anything(), "Where results are written (created if missing; relative to the working directory).");
       prm.declare_entry("output every", prm_value(defaults.output_every), Patterns::Integer(1), "Write VTU files every this many steps (log.csv gets every step).");
       prm.declare_entry("write nodal csv", prm_value(defaults.write_nodal_csv), Patterns::Bool(), "Also write nodes-NNNNN.csv with id, u, x, v per node.");
+      prm.declare_entry("start from", defaults.start_from, Patterns::Anything(), "A frame of another run of this scene (its solution-NNNNN.vtu, relative to the .prm file) to start from, on this scene's mesh: the run begins at the frame's time (from the solution.pvd beside it) with the frame's deformed positions and velocities at this mesh's reference nodes, interpolated linearly in the frame's reference cells; Dirichlet nodes and obstacles take their positions at that time. Dynamic scenes only; empty: start at t = 0 from the scene's initial state.");
 
       const BodyDescription body;
       for (unsigned int b = 0; b < max_bodies; ++b)
@@ -238,6 +239,8 @@ namespace ritr
       s.output_directory = prm.get("output directory");
       s.output_every     = prm.get_integer("output every");
       s.write_nodal_csv  = prm.get_bool("write nodal csv");
+      if (!prm.get("start from").empty())
+        s.start_from = resolve(prm.get("start from"), file);
       const int dim      = s.dimension;
       const auto fail    = [&](const std::string &entry, const std::string &what) {
         throw InputError(s.where(entry) + ": " + what);
@@ -255,6 +258,8 @@ namespace ritr
       if (std::abs(steps - std::round(steps)) > 1e-6)
         fail("end time", "is not a whole number of time steps of " + prm.get("time step") + " (" +
                            std::to_string(steps) + " steps)");
+      if (!s.start_from.empty() && !s.dynamic())
+        fail("start from", "needs a dynamic scene (mode = dynamic)");
       if (s.output_directory.empty())
         fail("output directory", "is empty");
       if (const std::string problem = output_directory_problem(s.output_directory); !problem.empty())
@@ -380,7 +385,7 @@ namespace ritr
     }
   } // namespace
 
-  unsigned int Scene::n_steps() const { return std::max(1L, std::lround(end_time / time_step)); }
+  unsigned int Scene::n_steps() const { return std::max(1L, std::lround((end_time - start_time) / time_step)); }
 
   std::string Scene::where(const std::string &entry) const
   {

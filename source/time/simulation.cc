@@ -21,6 +21,7 @@ namespace ritr
     , x_(problem_->initial_positions)
     , v_(problem_->initial_velocity)
     , obstacle_positions_(problem_->initial_obstacle_positions)
+    , time_(scene_.start_time)
   {
     NewtonMonitor monitor;
     if (scene_.solver.newton_log)

@@ -192,7 +192,7 @@ namespace ritr
     for (unsigned int s = 0; s <= step_; ++s)
       if (writes_frame(s))
         {
-          const double t = s == 0 ? 0.0 : history_[s - 1].time;
+          const double t = s == 0 ? scene_.start_time : history_[s - 1].time;
           solution.emplace_back(t, numbered_output("solution", s, ".vtu"));
           reference.emplace_back(t, numbered_output("reference", s, ".vtu"));
           obstacles.emplace_back(t, numbered_output("obstacles", s, ".vtu"));

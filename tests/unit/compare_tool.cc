@@ -242,7 +242,7 @@ TEST(CompareReader, ReadsCompressedAppendedVtuWrittenByVtk)
   writer->SetCompressorTypeToZLib();
   ASSERT_EQ(writer->Write(), 1);
 
-  const DeformedMesh read = read_vtu(file);
+  const DeformedMesh read = read_deformed_mesh(file);
   EXPECT_EQ(read.dim, 3u);
   EXPECT_EQ(read.points, cube.points);
   EXPECT_EQ(read.cells, cube.cells);

@@ -1,23 +1,15 @@
 #pragma once
-// Reading a run's solution series: the .pvd collection and its VTK XML UnstructuredGrid files
-// (ASCII, binary, compressed or appended: the VTK library decodes them all). Throws InputError
-// naming the file for anything missing or malformed.
+// A run's frames as ritr-compare sees them (output/vtk_reader.h reads the files).
 #include <ritr/compare/deformed_mesh.h>
+#include <ritr/output/vtk_reader.h>
 
 #include <filesystem>
-#include <vector>
 
 namespace ritr::compare
 {
-  struct PvdFrame
-  {
-    double                time;
-    std::filesystem::path file; // resolved against the .pvd's folder
-  };
+  using ritr::PvdFrame;
+  using ritr::read_pvd;
 
-  // The DataSet entries (timestep, file) of a ParaView collection, in file order.
-  std::vector<PvdFrame> read_pvd(const std::filesystem::path &pvd_file);
-
-  // Points and cells of an UnstructuredGrid of lines, triangles or tetrahedra (one kind only).
-  DeformedMesh read_vtu(const std::filesystem::path &vtu_file);
+  // The deformed simplices of a frame.
+  DeformedMesh read_deformed_mesh(const std::filesystem::path &vtu_file);
 } // namespace ritr::compare

@@ -73,6 +73,8 @@ namespace ritr
     void set_initial_velocity();
     void build_obstacles();
     void build_dirichlet_conditions();
+    // start_frame.cc: the state, and the start time, of the frame `start from` names.
+    void start_from_frame();
     void build_contact();
     // The cells this process assembles (all of them in a serial run).
     void share_cells();

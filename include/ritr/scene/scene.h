@@ -125,6 +125,10 @@ namespace ritr
     std::string output_directory = "output";
     unsigned    output_every     = 1;
     bool        write_nodal_csv  = false;
+    // Another run's frame to start from (resolved against the .prm file; empty: none), and the
+    // time the run starts at: 0, or that frame's (set when the problem is built).
+    std::string start_from;
+    double      start_time = 0;
 
     std::vector<BodyScene>      bodies;
     std::vector<Material>       materials;  // indexed by material id

@@ -43,6 +43,8 @@ namespace ritr
     // Single step, for tests and drivers that inspect the state between steps.
     StepReport advance();
 
+    // The scene as the problem settled it (with the start time of a `start from` frame).
+    const Scene            &scene() const { return scene_; }
     const SimplexMesh<dim> &mesh() const { return mesh_; }
     const Eigen::VectorXd  &positions() const { return x_; }
     const Eigen::VectorXd  &velocities() const { return v_; }

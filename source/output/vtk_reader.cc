@@ -1,12 +1,14 @@
 #include <ritr/common/input_error.h>
-#include <ritr/compare/vtk_reader.h>
+#include <ritr/output/vtk_reader.h>
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellType.h>
 #include <vtkCommand.h>
+#include <vtkDataArray.h>
 #include <vtkExecutive.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
@@ -14,7 +16,7 @@
 
 #include <string>
 
-namespace ritr::compare
+namespace ritr
 {
   namespace
   {
@@ -112,7 +114,7 @@ namespace ritr::compare
     return frames;
   }
 
-  DeformedMesh read_vtu(const std::filesystem::path &vtu_file)
+  VtuGrid read_vtu(const std::filesystem::path &vtu_file)
   {
     if (!std::filesystem::is_regular_file(vtu_file))
       fail(vtu_file, "no such file");
@@ -132,10 +134,22 @@ namespace ritr::compare
     errors.check(vtu_file, "invalid VTK XML UnstructuredGrid file");
 
     vtkUnstructuredGrid *grid = reader->GetOutput();
-    DeformedMesh         mesh;
+    VtuGrid              mesh;
     mesh.points.resize(grid->GetNumberOfPoints());
     for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
       grid->GetPoint(i, mesh.points[i].data());
+    vtkPointData *data = grid->GetPointData();
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+      {
+        vtkDataArray *array = data->GetArray(a);
+        if (array == nullptr || array->GetName() == nullptr)
+          continue;  // not numeric, or nameless: nothing to look it up by
+        auto &field = mesh.point_fields[array->GetName()];
+        field.resize(array->GetNumberOfTuples(), array->GetNumberOfComponents());
+        for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+          for (int k = 0; k < array->GetNumberOfComponents(); ++k)
+            field(i, k) = array->GetComponent(i, k);
+      }
 
     vtkNew<vtkIdList> ids;
     for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
@@ -156,4 +170,4 @@ namespace ritr::compare
       fail(vtu_file, "has no cells");
     return mesh;
   }
-} // namespace ritr::compare
+} // namespace ritr

@@ -1,0 +1,64 @@
+#!/usr/bin/python3
+"""`ladder.py --reuse`: which runs an earlier ladder left in the work directory are taken as they
+are (finished with the same input), resumed (stopped at a checkpoint) or run afresh
+(scripts/ladder.py, earlier_run)."""
+import json
+import os
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from ladder import earlier_run  # noqa: E402
+
+PRM = "set end time = 1\n"
+
+
+class EarlierRun(unittest.TestCase):
+    def setUp(self):
+        self.work = tempfile.TemporaryDirectory()
+        self.directory = os.path.join(self.work.name, "fixed_r3")
+        os.makedirs(self.directory)
+        self.measured = os.path.join(self.work.name, "fixed_r3.measured.json")
+
+    def tearDown(self):
+        self.work.cleanup()
+
+    def write(self, measured=None, summary=None, checkpoint=False):
+        if measured is not None:
+            with open(self.measured, "w") as f:
+                json.dump(measured, f)
+        if summary is not None:
+            with open(os.path.join(self.directory, "summary.json"), "w") as f:
+                json.dump(summary, f)
+        if checkpoint:
+            open(os.path.join(self.directory, "checkpoint.bin"), "wb").close()
+
+    def test_nothing_earlier_runs_afresh(self):
+        self.assertIsNone(earlier_run(self.measured, PRM, self.directory))
+
+    def test_finished_run_is_reused_with_its_measurement(self):
+        measurement = {"prm": PRM, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
+        self.write(measurement, {"complete": True}, checkpoint=True)
+        self.assertEqual(earlier_run(self.measured, PRM, self.directory), ("finished", measurement))
+
+    def test_stopped_run_is_resumed(self):
+        self.write({"prm": PRM}, {"complete": False}, checkpoint=True)
+        self.assertEqual(earlier_run(self.measured, PRM, self.directory)[0], "stopped")
+
+    def test_killed_before_its_summary_is_resumed(self):
+        self.write({"prm": PRM}, checkpoint=True)
+        self.assertEqual(earlier_run(self.measured, PRM, self.directory)[0], "stopped")
+
+    def test_other_input_runs_afresh(self):
+        self.write({"prm": PRM, "exit_code": 0, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": True},
+                   checkpoint=True)
+        self.assertIsNone(earlier_run(self.measured, "set end time = 2\n", self.directory))
+
+    def test_failed_run_without_checkpoint_runs_afresh(self):
+        self.write({"prm": PRM, "exit_code": 3, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": False})
+        self.assertIsNone(earlier_run(self.measured, PRM, self.directory))
+
+
+if __name__ == "__main__":
+    unittest.main()
