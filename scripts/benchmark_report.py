@@ -127,6 +127,8 @@ def load(path):
 def kind(result):
     if "knee" in result:
         return "sweep"
+    if "start" in result:
+        return "branches"  # scripts/masticator_branches.py: runs started from r-ITR's frames
     if "mu" in result:
         return "friction"
     if result.get("accuracy") == "energy":
@@ -301,6 +303,8 @@ def hausdorff_verdict(result, runs):
 
 def verdict_of(result):
     k = kind(result)
+    if k == "branches":
+        return result["headline"]["sentence"]
     if k == "sweep":
         v = result.get("best_verdict")
         return (f"Best time to accuracy, `{result['best']}`: {v['sentence']}" if v else
@@ -313,6 +317,8 @@ def verdict_of(result):
 def plot_names(name, result):
     """(file, caption) of the plots drawn from a result (scripts/ladder_report.py's rules)."""
     k = kind(result)
+    if k == "branches":
+        return []  # its section's table says it; the masticator's own plots show the branches
     if k == "sweep":
         return [(f"{name}_pareto.png", "mean Hausdorff distance against time, every run")]
     if k == "friction":
@@ -334,7 +340,7 @@ def plot_names(name, result):
 def draw_plots(name, result, results_dir, redraw):
     """Draw the plots of a result that are missing (all of them with `redraw`)."""
     wanted = [os.path.join(results_dir, f) for f, _ in plot_names(name, result)]
-    if not redraw and all(os.path.exists(p) for p in wanted):
+    if not wanted or not redraw and all(os.path.exists(p) for p in wanted):
         return
     prefix = os.path.join(results_dir, name)
     k = kind(result)
@@ -410,9 +416,13 @@ def namespace(name, result):
         v = [getattr(r, attribute) for r in items]
         return ", ".join(fmt(abs(a - b), spec) for a, b in zip(v, v[1:]))
 
-    def phase(r, t0, t1):
-        d = [x for t, x in r.data.get("hausdorff_over_time", []) if t0 < t <= t1]
+    def phase(r, t0, t1, series="hausdorff_over_time"):
+        d = [x for t, x in r.data.get(series, []) if t0 < t <= t1]
         return sum(d) / len(d) if d else math.nan
+
+    def source_phase(r, t0, t1):
+        """A restarted run's mean distance to the run it started from (masticator_branches)."""
+        return phase(r, t0, t1, "source_hausdorff_over_time")
 
     def kinetic_peak(r, t0, t1):
         return max((x for t, x in r.data.get("kinetic_energy_over_time", []) if t0 < t <= t1), default=math.nan)
@@ -432,9 +442,11 @@ def namespace(name, result):
         lines = header(["run", "vertices"] + [f"distance, {s}" for s in spans]
                        + [f"peak kinetic energy [J], {s}" for s in spans])
         for r in runs:
-            distances = [fmt(phase(r, a, b), ".3g") if r.name != result["reference"] else "reference"
-                         for a, b in zip(edges, edges[1:])]
-            peaks = [fmt(kinetic_peak(r, a, b), ".0f") for a, b in zip(edges, edges[1:])]
+            # "-": no frame in the span (a run started later, masticator_branches).
+            distances = [("-" if math.isnan(phase(r, a, b)) else fmt(phase(r, a, b), ".3g"))
+                         if r.name != result["reference"] else "reference" for a, b in zip(edges, edges[1:])]
+            peaks = ["-" if math.isnan(kinetic_peak(r, a, b)) else fmt(kinetic_peak(r, a, b), ".0f")
+                     for a, b in zip(edges, edges[1:])]
             lines.append(row([r.name, f"{r.v:,}"] + distances + peaks))
         return "\n".join(lines)
 
@@ -452,7 +464,7 @@ def namespace(name, result):
         same=same[0] if same else (fixed[0] if fixed else None),
         finest=fixed[-1] if fixed else None, match=by_name.get(h.get("matching_fixed") or ""),
         pct=pct, rel=rel, times=times, share=share, values=values, differences=differences,
-        phase=phase, kinetic_peak=kinetic_peak, kinetic_gap=kinetic_gap, phase_table=phase_table,
+        phase=phase, source_phase=source_phase, kinetic_peak=kinetic_peak, kinetic_gap=kinetic_gap, phase_table=phase_table,
         corners=corners_on_vertex, verdict=lambda: verdict_of(result), plots=lambda: plot_links(name, result),
         sweep_run=sweep_run,
         abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip, dict=dict)
@@ -536,6 +548,9 @@ class Document:
             if kind(result) == "sweep":
                 runs = [r for r in result["runs"] if r.get("adaptivity")]
                 lines.append(row([link, f"{len(runs)} settings", verdict_of(result)]))
+                continue
+            if kind(result) == "branches":
+                lines.append(row([link, f"restarts at t = {result['start']:g}", verdict_of(result)]))
                 continue
             ritr = runs_of(result)[0]
             figure = {"energy": f"energy {ritr.E:.6g}", "hausdorff": f"Hausdorff {ritr.h:.3g}",
