@@ -87,7 +87,7 @@ def main():
     work = args.work or tempfile.mkdtemp(prefix="friction-sweep-")
     os.makedirs(work, exist_ok=True)
     _, _, baseline_rss = measure([args.ritr, "--help"], os.path.join(work, "baseline.log"))
-    ladder_args = SimpleNamespace(scene=args.scene, quick=args.quick, ritr=args.ritr)
+    ladder_args = SimpleNamespace(scene=args.scene, quick=args.quick, ritr=args.ritr, reuse=False)
 
     def run(name, mu, k, adaptivity):
         overrides = dict(rung_overrides(scene_text, k, adaptivity), **{"Contact/friction coefficient": repr(mu)})

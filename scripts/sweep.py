@@ -16,14 +16,14 @@ The result holds every run with its time over that of a fixed mesh of its accura
 (scripts/accuracy_front.py), the run of the best time to accuracy (the smallest such ratio),
 and the verdicts of both against the fixed rungs; the runs go
 one after another, so that their times are comparable. `--reuse` keeps runs already finished
-in the work directory (a sweep cut short goes on where it stopped). `--quick` runs two steps of
+in the work directory with the same input and resumes stopped ones (a sweep cut short goes on
+where it stopped; scripts/ladder.py). `--quick` runs two steps of
 the two coarsest fixed rungs (the second as the reference) and of the first two r-ITR
 settings, so that the sweep cannot rot unnoticed. The exit code is 1 if a run failed or broke
 an invariant (the JSON is written first).
 """
 import argparse
 import itertools
-import json
 import os
 import sys
 import tempfile
@@ -54,25 +54,8 @@ def variant_name(settings):
     return name
 
 
-def finished(work, name):
-    """The run of a previous sweep in `work` if it finished, else None."""
-    try:
-        with open(os.path.join(work, name, "summary.json")) as f:
-            return json.load(f).get("complete", False)
-    except (OSError, ValueError):
-        return False
-
-
 def run(args, scene_text, name, overrides, work, reference=None):
-    directory = os.path.join(work, name)
-    if args.reuse and finished(work, name) and os.path.exists(os.path.join(work, name + ".run.json")):
-        with open(os.path.join(work, name + ".run.json")) as f:
-            result = json.load(f)
-    else:
-        result = run_rung(args, scene_text, name, overrides, work)
-        with open(os.path.join(work, name + ".run.json"), "w") as f:
-            json.dump(result, f)
-    result["directory"] = directory
+    result = run_rung(args, scene_text, name, overrides, work)  # with --reuse, a finished run is kept
     result["seconds"] = result.get("total_wall_seconds", result["wall_seconds"])
     if reference is not None:
         compare(args, result, reference)
@@ -89,7 +72,8 @@ def main():
                    help="an r-ITR setting and its values; the runs take every combination")
     p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE", help="override for every run")
     p.add_argument("--work", help="directory for the runs (default: a temporary one)")
-    p.add_argument("--reuse", action="store_true", help="keep the runs of the work directory that finished")
+    p.add_argument("--reuse", action="store_true",
+                   help="keep the runs of the work directory that finished with the same input (scripts/ladder.py)")
     p.add_argument("--quick", action="store_true", help="two steps of the coarsest runs only")
     p.add_argument("--out", help="result JSON (default: stdout)")
     p.add_argument("--ritr", default=os.path.join(build, "ritr"))
