@@ -2,6 +2,7 @@
 // meshes. Parses the command line and the scene, runs it, maps failures to exit codes:
 // 0 success, 2 bad input, 3 a step that did not converge, 1 anything else.
 #include <ritr/common/input_error.h>
+#include <ritr/common/number_text.h>
 #include <ritr/common/thread_pools.h>
 #include <ritr/scene/parameters.h>
 #include <ritr/time/simulation.h>
@@ -15,18 +16,11 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace
 {
-  std::string number_text(const double value)
-  {
-    std::ostringstream s;
-    s << value;
-    return s.str();
-  }
 
   void print_usage(std::ostream &out)
   {
@@ -104,7 +98,7 @@ namespace
             << simulation.mesh().n_nodes() << " vertices, " << simulation.mesh().n_cells() << " cells, "
             << simulation.scene().n_steps() << " steps"
             << (scene.start_from.empty() ? std::string() :
-                                           " from t = " + number_text(simulation.scene().start_time) + " (" + scene.start_from + ")")
+                                           " from t = " + ritr::number_text(simulation.scene().start_time) + " (" + scene.start_from + ")")
             << (share.distributed() ? " on " + std::to_string(share.size()) +
                                         (share.size() == 1 ? " process" : " processes") + " (" +
                                         ritr::name_of(ritr::distributed_solver_names, scene.solver.distributed_solver) +

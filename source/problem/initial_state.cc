@@ -4,13 +4,13 @@
 // or touching, and nothing inside a body or a closed obstacle. Each failure names the body
 // or obstacle at fault.
 #include <ritr/common/input_error.h>
+#include <ritr/common/number_text.h>
 #include <ritr/contact/enclosure.h>
 #include <ritr/metrics/mesh_metrics.h>
 #include <ritr/problem/problem.h>
 
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace ritr
 {
@@ -20,12 +20,6 @@ namespace ritr
     // coordinates below this keep every such product within the range of doubles.
     constexpr double largest_coordinate = 1e50;
 
-    std::string number(const double value)
-    {
-      std::ostringstream s;
-      s << value;
-      return s.str();
-    }
 
     // One connected body or one obstacle, as the inside tests see it: its boundary facets in
     // state vertex numbering, whether they bound a region, and a vertex of it.
@@ -83,8 +77,8 @@ namespace ritr
     const auto check = [&](const Eigen::VectorXd &positions, const int first_vertex) {
       for (Eigen::Index i = 0; i < positions.size(); ++i)
         if (!(std::abs(positions[i]) <= largest_coordinate))
-          throw InputError(scene.where(name_of_state_vertex(first_vertex + i / dim)) + ": has a coordinate of " + number(positions[i]) + "; coordinates must stay below " +
-                           number(largest_coordinate) + " in magnitude (choose other units)");
+          throw InputError(scene.where(name_of_state_vertex(first_vertex + i / dim)) + ": has a coordinate of " + number_text(positions[i]) + "; coordinates must stay below " +
+                           number_text(largest_coordinate) + " in magnitude (choose other units)");
     };
     check(initial_reference, 0);
     check(initial_positions, 0);

@@ -5,6 +5,7 @@
 // piecewise-linear state (exactly, when the fine mesh refines the coarse one), and a frame of
 // an r-ITR run starts a fixed mesh from its state: how the paper's branch questions are put.
 #include <ritr/common/input_error.h>
+#include <ritr/common/number_text.h>
 #include <ritr/output/vtk_reader.h>
 #include <ritr/problem/problem.h>
 #include <ritr/transfer/old_mesh_locator.h>
@@ -18,12 +19,6 @@ namespace ritr
 {
   namespace
   {
-    std::string number(const double value)
-    {
-      std::ostringstream s;
-      s << value;
-      return s.str();
-    }
 
     // The time of `frame` in the solution.pvd beside it.
     double frame_time(const std::filesystem::path &frame, const std::string &entry)
@@ -67,9 +62,9 @@ namespace ritr
     const double start = frame_time(scene.start_from, entry);
     const double steps = (scene.end_time - start) / scene.time_step;
     if (!(start >= 0) || !(steps >= 1 - 1e-6))
-      throw InputError(entry + ": the frame's time " + number(start) + " leaves no step before the end time");
+      throw InputError(entry + ": the frame's time " + number_text(start) + " leaves no step before the end time");
     if (std::abs(steps - std::round(steps)) > 1e-6)
-      throw InputError(entry + ": the frame's time " + number(start) + " is not a whole number of time steps before the end time");
+      throw InputError(entry + ": the frame's time " + number_text(start) + " is not a whole number of time steps before the end time");
 
     const VtuGrid frame = read_vtu(scene.start_from);
     const auto    field = [&](const std::string &name) -> const Eigen::MatrixXd & {
