@@ -193,7 +193,9 @@ COST = ["vertices", "time [s]", "memory [MiB]", "Newton its", "outer its"]
 
 def hausdorff_table(result, runs):
     ref = result["reference"]
-    lines = header(["run"] + COST + ["mean Hausdorff", "max Hausdorff", "time / fixed of its accuracy"])
+    until = result.get("accuracy_until")
+    window = f", t <= {until:g}" if until is not None else ""
+    lines = header(["run"] + COST + [f"mean Hausdorff{window}", f"max Hausdorff{window}", "time / fixed of its accuracy"])
     for r in runs:
         if r.name == ref:
             accuracy = ["reference", "reference"]

@@ -74,7 +74,9 @@ def row(name, title):
                     f"| {measure(finest)} | {duration(finest)} | no fixed rung passes |")
         verdict = f"passes like the {vertices(fixed)}-vertex mesh in {percent(100 * run_seconds(ritr) / run_seconds(fixed))} % of its time"
     else:
-        measure = lambda r: f"Hausdorff {r['mean_hausdorff']:.2g}" if "mean_hausdorff" in r else "reference"
+        until = result.get("accuracy_until")
+        window = f" (t <= {until:g})" if until is not None else ""
+        measure = lambda r: f"Hausdorff {r['mean_hausdorff']:.2g}{window}" if "mean_hausdorff" in r else "reference"
         ratio = (head.get("time_to_accuracy") or {}).get("interpolated_ratio")
         verdict = (f"a fixed mesh as accurate (between the rungs) takes {1 / ratio:.1f}x r-ITR's time"
                    if ratio else head.get("why", ""))
