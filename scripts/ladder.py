@@ -165,16 +165,18 @@ def hausdorff_until(per_frame, until):
     return (sum(ranked) / len(ranked), max(ranked)) if ranked else None
 
 
-def compare(args, run, reference):
+def compare(args, run, reference, until=None):
+    """Adds ritr-compare's distances of `run` to `reference`; with `until`, the mean and largest
+    Hausdorff distance are of the frames up to that time."""
     result = subprocess.run([args.compare, run["directory"], reference["directory"]], capture_output=True, text=True)
     if result.returncode != 0:
         run["compare_failure"] = result.stderr.strip()
         return
     c = json.loads(result.stdout)
-    if args.accuracy_until is not None:
-        window = hausdorff_until(c["per_frame"], args.accuracy_until)
+    if until is not None:
+        window = hausdorff_until(c["per_frame"], until)
         if window is None:
-            run["compare_failure"] = f"no frame at or before t = {args.accuracy_until:g}"
+            run["compare_failure"] = f"no frame at or before t = {until:g}"
             return
         c["mean_hausdorff"], c["max_hausdorff"] = window
     run.update(mean_hausdorff=c["mean_hausdorff"], max_hausdorff=c["max_hausdorff"],
@@ -365,7 +367,7 @@ def main():
     densities = material_densities(scene_text)
     for run in runs:
         if run is not reference:
-            compare(args, run, reference)
+            compare(args, run, reference, until=args.accuracy_until)
         if dynamic and os.path.exists(os.path.join(run["directory"], "solution.pvd")):
             run["kinetic_energy_over_time"] = kinetic_energies(run["directory"], densities)
         if args.pass_below is not None and run["exit_code"] == 0:
