@@ -164,6 +164,7 @@ int main(int argc, char **argv)
     {
       const ritr::Scene scene = ritr::read_scene(command.scene);
       ritr::use_one_thread_pool();
+      ritr::set_factorization_threads(scene.solver.factorization_threads);
       std::unique_ptr<tbb::global_control> threads;
       if (scene.solver.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,

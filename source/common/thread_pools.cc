@@ -1,5 +1,7 @@
 #include <ritr/common/thread_pools.h>
 
+#include <algorithm>
+
 // Weak: a BLAS without OpenBLAS's extension, or a build without OpenMP, leaves them null.
 extern "C"
 {
@@ -10,6 +12,26 @@ extern "C"
 
 namespace ritr
 {
+  namespace
+  {
+    unsigned int factorization_threads = 1;
+  }
+
+  void set_factorization_threads(const unsigned int threads) { factorization_threads = std::max(1u, threads); }
+
+  LargeFactorizationThreads::LargeFactorizationThreads(const double flops)
+  {
+    raised_ = factorization_threads > 1 && flops >= large_factorization_flops && openblas_set_num_threads;
+    if (raised_)
+      openblas_set_num_threads(static_cast<int>(factorization_threads));
+  }
+
+  LargeFactorizationThreads::~LargeFactorizationThreads()
+  {
+    if (raised_)
+      openblas_set_num_threads(1);
+  }
+
   void use_one_thread_pool()
   {
     if (openblas_set_num_threads)

@@ -20,8 +20,9 @@ namespace ritr
   {
     constexpr char          magic[8]   = {'R', 'I', 'T', 'R', 'C', 'K', 'P', 'T'};
     // 2: steps carry the outer stop; 3: the barrier stiffness; 4: the final energy terms;
-    // 5: the stepper's carried state
-    constexpr std::uint32_t version    = 5;
+    // 5: the stepper's carried state; 6: the scene's entries (last), the fingerprint of only
+    // those set away from their defaults
+    constexpr std::uint32_t version    = 6;
     constexpr std::uint32_t byte_order = 0x01020304;
     constexpr std::size_t   header_size = sizeof(magic) + 2 * sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -196,6 +197,7 @@ namespace ritr
         payload.put(value);
       }
     payload.put(c.stepper_state);
+    payload.put(c.scene_entries);
 
     Writer file;
     file.bytes.append(magic, sizeof(magic));
@@ -282,6 +284,7 @@ namespace ritr
         value = r.get<double>();
       }
     c.stepper_state = r.vector();
+    c.scene_entries = r.string();
     if (!r.at_end())
       r.corrupted();
     if (const std::string problem = implausible_contents(c); !problem.empty())

@@ -12,6 +12,9 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace ritr
 {
@@ -400,6 +403,57 @@ namespace ritr
     prm.print_parameters(out, ParameterHandler::OutputStyle::PRM);
   }
 
+  std::vector<std::pair<std::string, std::string>> listing_entries(const std::string &listing)
+  {
+    std::istringstream                               lines(listing);
+    std::vector<std::string>                         sections;
+    std::vector<std::pair<std::string, std::string>> entries;
+    const auto trimmed = [](const std::string &text) {
+      const auto first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t\r");
+      return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+    };
+    for (std::string line; std::getline(lines, line);)
+      {
+        line = trimmed(line);
+        if (line.rfind("subsection ", 0) == 0)
+          sections.push_back(trimmed(line.substr(11)));
+        else if (line == "end" && !sections.empty())
+          sections.pop_back();
+        else if (const auto equals = line.find('='); line.rfind("set ", 0) == 0 && equals != std::string::npos)
+          {
+            std::string path;
+            for (const auto &section : sections)
+              path += section + "/";
+            entries.emplace_back(path + trimmed(line.substr(4, equals - 4)), trimmed(line.substr(equals + 1)));
+          }
+      }
+    return entries;
+  }
+
+  namespace
+  {
+    // "Section/entry = value", one line per entry whose value differs from its default, in
+    // the listing's order. Entries left at their defaults are left out, so that an entry a
+    // newer ritr declares does not make a scene another scene.
+    std::string entries_away_from_defaults(const ParameterHandler &prm)
+    {
+      ParameterHandler defaults;
+      declare(defaults);
+      const auto printed = [](const ParameterHandler &p) {
+        std::ostringstream out;
+        p.print_parameters(out, ParameterHandler::OutputStyle::ShortPRM);
+        return listing_entries(out.str());
+      };
+      const auto  default_entries = printed(defaults);
+      const auto  entries         = printed(prm);
+      std::string listing;
+      for (std::size_t i = 0; i < entries.size(); ++i)
+        if (i >= default_entries.size() || entries[i] != default_entries[i])
+          listing += entries[i].first + " = " + entries[i].second + "\n";
+      return listing;
+    }
+  } // namespace
+
   Scene read_scene(const std::string &file)
   {
     const SceneFile  scene_file = read_scene_file(file);
@@ -412,15 +466,15 @@ namespace ritr
         if (!scene_file.sets_an_entry)
           throw InputError(file + ": sets no entry (an empty scene would run every default)");
         Scene scene = validated_scene(prm, scene_file, file);
-        // Where the outputs go and how many threads assemble do not change the results: a
-        // moved output directory resumes, and so does a run on another machine.
+        // Where the outputs go and how many threads assemble or factorize do not change the
+        // results beyond round-off: a moved output directory resumes, and so does a run on
+        // another machine.
         prm.set("output directory", "");
         prm.enter_subsection("Solver");
         prm.set("threads", "0");
+        prm.set("factorization threads", "1");
         prm.leave_subsection();
-        std::ostringstream listing;
-        prm.print_parameters(listing, ParameterHandler::OutputStyle::ShortPRM);
-        scene.parameter_listing = listing.str();
+        scene.parameter_listing = entries_away_from_defaults(prm);
         return scene;
       }
     catch (const InputError &)

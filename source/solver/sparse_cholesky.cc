@@ -1,3 +1,4 @@
+#include <ritr/common/thread_pools.h>
 #include <ritr/solver/sparse_cholesky.h>
 
 #include <algorithm>
@@ -32,11 +33,13 @@ namespace ritr
     if (!same_pattern(matrix))
       {
         llt_.analyzePattern(matrix);
+        analysed_flops_ = llt_.cholmod().fl;
         outer_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
         inner_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
         analysed_ = true;
         ++n_analyses_;
       }
+    const LargeFactorizationThreads blas_threads(analysed_flops_);
     // A failed attempt is expected here (print 0: no warning on stderr).
     const auto factorize_shifted = [&](const double shift) {
       llt_.cholmod().print = 0;

@@ -14,6 +14,8 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace ritr
@@ -54,13 +56,44 @@ namespace ritr
     {
       return fnv1a(v.data(), v.size() * sizeof(double), hash);
     }
+
+    // "Section/entry" -> "value" of a Scene::parameter_listing.
+    std::map<std::string, std::string> entries_of(const std::string &listing)
+    {
+      std::map<std::string, std::string> entries;
+      std::istringstream                 lines(listing);
+      for (std::string line; std::getline(lines, line);)
+        if (const auto equals = line.find(" = "); equals != std::string::npos)
+          entries[line.substr(0, equals)] = line.substr(equals + 3);
+      return entries;
+    }
+
+    // Why a checkpoint of the scene with entries `there` is not a run of `scene_file` with
+    // entries `here`: the first entry that differs, or the meshes and initial states.
+    std::string scene_difference(const std::string &here, const std::string &there, const std::string &scene_file)
+    {
+      const auto here_entries = entries_of(here), there_entries = entries_of(there);
+      const auto value        = [](const std::map<std::string, std::string> &entries, const std::string &name) {
+        const auto e = entries.find(name);
+        return e == entries.end() ? std::string("its default") : e->second;
+      };
+      std::set<std::string> names;
+      for (const auto *entries : {&here_entries, &there_entries})
+        for (const auto &[name, v] : *entries)
+          names.insert(name);
+      for (const auto &name : names)
+        if (value(here_entries, name) != value(there_entries, name))
+          return name + " is " + value(here_entries, name) + " in " + scene_file + ", " +
+                 value(there_entries, name) + " in the checkpoint's scene";
+      return "the meshes or initial state that " + scene_file + " gives differ";
+    }
   } // namespace
 
   template <int dim>
   std::uint64_t Simulation<dim>::scene_fingerprint() const
   {
-    // The parameters as parsed (comments and layout do not count) and what they produced
-    // from files the scene names (meshes, obstacles).
+    // The entries set away from their defaults, as parsed (comments and layout do not count),
+    // and what they produced from files the scene names (meshes, obstacles).
     std::uint64_t h = fnv1a(scene_.parameter_listing.data(), scene_.parameter_listing.size());
     h = hash_of(mesh_.cells, h);
     for (const Eigen::VectorXd *v : {&problem_->initial_reference, &problem_->initial_positions,
@@ -78,6 +111,7 @@ namespace ritr
     Checkpoint  c;
     c.dimension            = dim;
     c.scene_hash           = scene_hash_;
+    c.scene_entries        = scene_.parameter_listing;
     c.step                 = step_;
     c.time                 = time_;
     c.u                    = u_;
@@ -128,8 +162,8 @@ namespace ritr
       throw InputError(file + ": is of a " + std::to_string(c.dimension) + "D run, " + scene_.parameter_file +
                        " is " + std::to_string(dim) + "D");
     if (c.scene_hash != scene_hash_)
-      throw InputError(file + ": belongs to another scene (the parameters or initial mesh of " +
-                       scene_.parameter_file + " differ)");
+      throw InputError(file + ": belongs to another scene (" +
+                       scene_difference(scene_.parameter_listing, c.scene_entries, scene_.parameter_file) + ")");
     const unsigned int n_steps = scene_.n_steps();
     if (c.u.size() != u_.size() || c.x.size() != x_.size() || c.v.size() != v_.size() ||
         c.obstacle_positions.size() != obstacle_positions_.size() || c.history.size() != c.step ||

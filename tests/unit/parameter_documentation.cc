@@ -33,24 +33,8 @@ namespace
   entries_by_path(const std::string &listing)
   {
     std::map<std::string, std::string> entries;
-    std::vector<std::string>           sections;
-    const std::regex                   subsection(R"(^\s*subsection\s+(.*?)\s*$)");
-    const std::regex                   end(R"(^\s*end\s*$)");
-    const std::regex                   entry(R"(^\s*set\s+([a-z ]+?)\s*=\s*(.*?)\s*$)");
-    std::istringstream                 in(listing);
-    std::smatch                        m;
-    for (std::string line; std::getline(in, line);)
-      if (std::regex_match(line, m, subsection))
-        sections.push_back(m[1]);
-      else if (std::regex_match(line, end) && !sections.empty())
-        sections.pop_back();
-      else if (std::regex_match(line, m, entry))
-        {
-          std::string path;
-          for (const auto &s : sections)
-            path += s + "/";
-          entries[path + std::string(m[1])] = m[2];
-        }
+    for (const auto &[path, value] : ritr::listing_entries(listing))
+      entries[path] = value;
     return entries;
   }
 } // namespace

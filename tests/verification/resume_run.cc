@@ -239,15 +239,17 @@ TEST(ResumeRun, RefusesMissingDamagedOrForeignCheckpoints)
                  "is corrupted (its time is not a finite time)");
   expect_refused("bad/time_not_its_steps", small_scene, with_time(checkpoint, 0.015),
                  "is corrupted (its time is not its last step's)");
+  // The refusal names the entry that differs.
   expect_refused("bad/other_scene", replaced(small_scene, "set dhat = 1e-3", "set dhat = 2e-3"), checkpoint,
-                 "another scene");
-  // The same scene with its outputs elsewhere, run on another number of threads, is the
-  // same run.
+                 "belongs to another scene (Contact/dhat is 2e-3 in ");
+  // The same scene with its outputs elsewhere, run on other numbers of threads, with an
+  // entry set to its default value, is the same run: entries left at their defaults do not
+  // count, so that an entry a newer ritr declares keeps older checkpoints.
   const std::string moved = folder + "/bad/moved";
   fs::create_directories(moved);
   fs::copy(good_output, moved, fs::copy_options::recursive);
   const std::string moved_scene =
-    replaced(small_scene, "OUTPUT", moved) + "subsection Solver\n  set threads = 1\nend\n";
+    replaced(small_scene, "OUTPUT", moved) + "subsection Solver\n  set threads = 1\n  set factorization threads = 2\n  set max iterations = 200\nend\n";
   const RunResult r = run_ritr(write_scene("bad/moved", moved_scene) + " --resume");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("already complete"), std::string::npos) << r.output;

@@ -37,6 +37,9 @@ namespace ritr
     // Totals of summary.json that no step report holds, over the run so far.
     double        wall_seconds = 0, output_seconds = 0, linear_solve_seconds = 0;
     std::uint64_t symbolic_factorizations = 0, numeric_factorizations = 0;
+    // The scene's entries set away from their defaults (Scene::parameter_listing), to name
+    // the first entry that differs when another scene's checkpoint is refused.
+    std::string scene_entries;
   };
 
   // Writes `checkpoint` to `path` atomically (temporary name, then rename).

@@ -6,6 +6,8 @@
 
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace ritr
 {
@@ -14,6 +16,10 @@ namespace ritr
 
   // Every parameter with its documentation and default, in .prm syntax.
   void print_parameters(std::ostream &out);
+
+  // ("Section/entry", value) of every `set` line of a .prm listing (one value per line, as
+  // print_parameters writes it), in the listing's order.
+  std::vector<std::pair<std::string, std::string>> listing_entries(const std::string &listing);
 
   constexpr unsigned int max_bodies = 8, max_materials = 8, max_dirichlet = 4, max_obstacles = 8;
 } // namespace ritr

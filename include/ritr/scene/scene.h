@@ -105,6 +105,7 @@ namespace ritr
     double       static_tolerance = 1e-8;  // statics: on |dx|_inf / bounding-box diagonal
     unsigned int max_iterations   = 200;
     unsigned int threads          = 0;  // 0: all cores
+    unsigned int factorization_threads = 1;  // BLAS threads in large factorizations
     bool         newton_log       = false;  // newton.csv: one row per Newton iteration
     HessianProjection hessian_projection = HessianProjection::trust_region;
     DistributedSolver distributed_solver = DistributedSolver::amg;  // runs under mpirun
@@ -142,9 +143,10 @@ namespace ritr
 
     // The line of each entry set in the parameter file ("Body 0/radius" -> 12).
     std::map<std::string, unsigned int> entry_lines;
-    // Every entry's value as parsed, one per line, but for the output directory and the
-    // thread count: what makes two scenes the same run (checkpoints refuse another scene's),
-    // whatever the file's comments and layout.
+    // "Section/entry = value" for every entry whose value as parsed differs from its default,
+    // one per line, but for the output directory and the thread count: what makes two scenes
+    // the same run (checkpoints refuse another scene's), whatever the file's comments and
+    // layout, and whatever entries a newer ritr adds with defaults that keep its results.
     std::string parameter_listing;
 
     bool dynamic() const { return mode == "dynamic"; }

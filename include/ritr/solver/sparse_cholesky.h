@@ -40,6 +40,7 @@ namespace ritr
     Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
     std::vector<int> outer_, inner_;
     bool             analysed_         = false;
+    double           analysed_flops_   = 0;  // of a factorization, by the symbolic analysis
     unsigned int     n_analyses_       = 0;
     unsigned int     n_factorizations_ = 0;
   };
