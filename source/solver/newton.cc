@@ -13,6 +13,13 @@ namespace ritr
   using newton_detail::gather_free;
   using newton_detail::scatter_free;
 
+  namespace
+  {
+    // CG iterations with a reused factor after which the next iteration factorizes afresh: at
+    // 44K 3D vertices a back-substitution costs about 1/50 of a factorization in wall time.
+    constexpr unsigned int reused_factor_cg_limit = 20;
+  } // namespace
+
   NewtonResult NewtonSolver::minimize(NewtonObjective &objective, Eigen::VectorXd &z,
                                       const std::vector<bool> &kinematic,
                                       const Eigen::VectorXd &targets, const NewtonSettings &settings)
@@ -52,6 +59,7 @@ namespace ritr
     unsigned int crawling = 0;
     double       last_full_step  = std::numeric_limits<double>::infinity();
     TrustRegion  region;
+    double       shift = 0;  // of the last factorization
 
     for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations)
       {
@@ -103,11 +111,15 @@ namespace ritr
                 rhs += coupling;
               }
           }
-        auto   start = std::chrono::steady_clock::now();
-        double shift = 0;
+        auto start = std::chrono::steady_clock::now();
+        // A large factor of an earlier iteration preconditions this one's CG while it keeps
+        // CG short: the exact Hessian is this iteration's, so only CG's iteration count changes.
+        const bool reuse_factor = trust_region && !distributed && region.radius > 0 &&
+                                  region.cg_iterations <= reused_factor_cg_limit &&
+                                  cholesky_.factorization_flops() >= settings.reuse_factorizations_from;
         if (distributed)
           distributed_->factorize(system_.matrix(), free_entry);
-        else
+        else if (!reuse_factor)
           shift = cholesky_.factorize(system_.matrix());
         linear_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (trust_region)

@@ -119,6 +119,7 @@ namespace ritr
           region.radius *= 2;
         if (!accepted)
           continue;
+        region.cg_iterations = cg.iterations;
         z = trial;
         objective.accept(z);
         if (settings.monitor)

@@ -8,6 +8,7 @@
 // energy's round-off, a trial is accepted when it lowers the norm of the free gradient
 // instead. The inner solve over the state and the outer line-search solves over the
 // reference mesh (adaptivity/line_search_outer.h) both run on it.
+#include <ritr/common/thread_pools.h>
 #include <ritr/common/triplets.h>
 #include <ritr/solver/distributed_linear_system.h>
 #include <ritr/solver/hessian_projection.h>
@@ -119,6 +120,12 @@ namespace ritr
     // Adaptive: start with the exact Hessian (a start close to the solution, where projected
     // Newton only crawls); a failed exact line search still falls back to projected steps.
     bool         start_exact = false;
+    // Trust region, one process: a factorization of at least this many flops goes on
+    // preconditioning the solve's next iterations for as long as CG converges in a few
+    // iterations with it; infinity: one factorization per iteration. The default reuses those
+    // of 3D meshes from about 40K vertices, where a back-substitution costs about 1/50 of a
+    // factorization in wall time (doc/benchmarks.md).
+    double       reuse_factorizations_from = large_factorization_flops;
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
     // A run shared among processes (null or one process: serial, CHOLMOD): the objective's
@@ -167,8 +174,9 @@ namespace ritr
     // What a trust-region solve carries from one iteration to the next.
     struct TrustRegion
     {
-      double radius         = 0;  // in the norm of the projected Hessian; 0: not started
-      double first_gradient = 0;
+      double       radius         = 0;  // in the norm of the preconditioner; 0: not started
+      double       first_gradient = 0;
+      unsigned int cg_iterations  = 0;  // of the last iteration's accepted step
     };
     enum class Outcome
     {

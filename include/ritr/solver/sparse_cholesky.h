@@ -32,6 +32,8 @@ namespace ritr
     Eigen::MatrixXd solve_columns(const Eigen::MatrixXd &rhs) const;
 
     unsigned int n_symbolic_analyses() const { return n_analyses_; }
+    // The flops of a numeric factorization, by the last symbolic analysis.
+    double factorization_flops() const { return analysed_flops_; }
     unsigned int n_factorizations() const { return n_factorizations_; }
 
   private:
