@@ -432,9 +432,9 @@ namespace ritr
 
   namespace
   {
-    // "Section/entry = value", one line per entry whose value differs from its default, in
-    // the listing's order. Entries left at their defaults are left out, so that an entry a
-    // newer ritr declares does not make a scene another scene.
+    // "set Section/entry = value", one line per entry whose value differs from its default, in
+    // the listing's order (listing_entries reads it back). Entries left at their defaults are
+    // left out, so that an entry a newer ritr declares does not make a scene another scene.
     std::string entries_away_from_defaults(const ParameterHandler &prm)
     {
       ParameterHandler defaults;
@@ -444,12 +444,12 @@ namespace ritr
         p.print_parameters(out, ParameterHandler::OutputStyle::ShortPRM);
         return listing_entries(out.str());
       };
-      const auto  default_entries = printed(defaults);
+      const auto  default_entries = printed(defaults);  // the same entries, in the same order
       const auto  entries         = printed(prm);
       std::string listing;
       for (std::size_t i = 0; i < entries.size(); ++i)
-        if (i >= default_entries.size() || entries[i] != default_entries[i])
-          listing += entries[i].first + " = " + entries[i].second + "\n";
+        if (entries[i] != default_entries[i])
+          listing += "set " + entries[i].first + " = " + entries[i].second + "\n";
       return listing;
     }
   } // namespace

@@ -16,7 +16,7 @@ namespace ritr
   namespace
   {
     // CG iterations with a reused factor after which the next iteration factorizes afresh: at
-    // 44K 3D vertices a back-substitution costs about 1/50 of a factorization in wall time.
+    // 44K 3D vertices a back-substitution costs about 1/100 of a factorization in wall time.
     constexpr unsigned int reused_factor_cg_limit = 20;
   } // namespace
 

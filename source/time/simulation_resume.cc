@@ -8,6 +8,7 @@
 #include <ritr/common/wall_clock.h>
 #include <ritr/output/checkpoint.h>
 #include <ritr/output/run_directory.h>
+#include <ritr/scene/parameters.h>
 #include <ritr/time/simulation.h>
 
 #include <filesystem>
@@ -57,15 +58,11 @@ namespace ritr
       return fnv1a(v.data(), v.size() * sizeof(double), hash);
     }
 
-    // "Section/entry" -> "value" of a Scene::parameter_listing.
+    // "Section/entry" -> value of a Scene::parameter_listing.
     std::map<std::string, std::string> entries_of(const std::string &listing)
     {
-      std::map<std::string, std::string> entries;
-      std::istringstream                 lines(listing);
-      for (std::string line; std::getline(lines, line);)
-        if (const auto equals = line.find(" = "); equals != std::string::npos)
-          entries[line.substr(0, equals)] = line.substr(equals + 3);
-      return entries;
+      const auto entries = listing_entries(listing);
+      return {entries.begin(), entries.end()};
     }
 
     // Why a checkpoint of the scene with entries `there` is not a run of `scene_file` with

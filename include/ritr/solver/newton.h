@@ -123,8 +123,8 @@ namespace ritr
     // Trust region, one process: a factorization of at least this many flops goes on
     // preconditioning the solve's next iterations for as long as CG converges in a few
     // iterations with it; infinity: one factorization per iteration. The default reuses those
-    // of 3D meshes from about 40K vertices, where a back-substitution costs about 1/50 of a
-    // factorization in wall time (doc/benchmarks.md).
+    // of 3D meshes from about 40K vertices, where a back-substitution costs about 1/100 of a
+    // factorization in wall time (doc/method.md).
     double       reuse_factorizations_from = large_factorization_flops;
     // Called after every accepted step with the new iterate (empty: no log).
     std::function<void(const NewtonIterationRecord &, const Eigen::VectorXd &z)> monitor;
