@@ -468,8 +468,10 @@ namespace ritr
         Scene scene = validated_scene(prm, scene_file, file);
         // Where the outputs go and how many threads assemble or factorize do not change the
         // results beyond round-off: a moved output directory resumes, and so does a run on
-        // another machine.
+        // another machine. Nor does the end time change the steps before it: a finished run
+        // resumed with a later one goes on.
         prm.set("output directory", "");
+        prm.set("end time", prm_value(Scene().end_time));
         prm.enter_subsection("Solver");
         prm.set("threads", "0");
         prm.set("factorization threads", "1");

@@ -47,6 +47,26 @@ namespace ritr
       return rows;
     }
 
+    // The steps of the `solution-NNNNN.vtu` frames in `directory`.
+    std::set<unsigned int> solution_frame_steps(const fs::path &directory)
+    {
+      std::set<unsigned int> steps;
+      std::error_code        ec;
+      for (const auto &entry : fs::directory_iterator(directory, ec))
+        {
+          const std::string name = entry.path().filename().string();
+          const std::string prefix = "solution-", suffix = ".vtu";
+          if (name.size() > prefix.size() + suffix.size() && name.rfind(prefix, 0) == 0 &&
+              name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+            {
+              const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+              if (digits.find_first_not_of("0123456789") == std::string::npos)
+                steps.insert(static_cast<unsigned int>(std::stoul(digits)));
+            }
+        }
+      return steps;
+    }
+
     template <typename T>
     std::uint64_t hash_of(const std::vector<T> &v, const std::uint64_t hash)
     {
@@ -132,9 +152,13 @@ namespace ritr
   template <int dim>
   std::vector<std::string> Simulation<dim>::frame_files(const unsigned int last_step) const
   {
-    std::vector<std::string> files;
+    // Besides the scene's frames, the checkpoint's own (a checkpoint comes with a frame, at
+    // the last step too, which a later end time makes a step in between) and those of the
+    // ends of a run's earlier parts (in the directory: the frames up to a checkpoint are).
+    const std::set<unsigned int> earlier_ends = solution_frame_steps(scene_.output_directory);
+    std::vector<std::string>     files;
     for (unsigned int s = 0; s <= last_step; ++s)
-      if (writes_frame(s))
+      if (writes_frame(s) || s == last_step || earlier_ends.count(s))
         {
           for (const char *stem : {"solution", "reference"})
             files.push_back(numbered_output(stem, s, ".vtu"));
@@ -163,9 +187,16 @@ namespace ritr
                        scene_difference(scene_.parameter_listing, c.scene_entries, scene_.parameter_file) + ")");
     const unsigned int n_steps = scene_.n_steps();
     if (c.u.size() != u_.size() || c.x.size() != x_.size() || c.v.size() != v_.size() ||
-        c.obstacle_positions.size() != obstacle_positions_.size() || c.history.size() != c.step ||
-        c.step > n_steps)
+        c.obstacle_positions.size() != obstacle_positions_.size() || c.history.size() != c.step)
       throw InputError(file + ": is corrupted (its sizes do not match the scene)");
+    // The end time is not part of the scene: a run goes on to a later one, not back.
+    if (c.step > n_steps)
+      {
+        std::ostringstream why;
+        why << file << ": is at step " << c.step << " (t = " << c.time << "), past the end time of "
+            << scene_.parameter_file << " (" << scene_.end_time << ", step " << n_steps << ")";
+        throw InputError(why.str());
+      }
     if (c.time > scene_.end_time)
       throw InputError(file + ": is corrupted (its time is past the scene's end time)");
     try
@@ -219,9 +250,10 @@ namespace ritr
     const fs::path directory = scene_.output_directory;
     // The collections list the frames up to the checkpoint before later frames go, so
     // that no collection ever names a missing file.
+    const std::set<unsigned int> earlier_ends = solution_frame_steps(directory);  // as in frame_files()
     std::vector<std::pair<double, std::string>> solution, reference, obstacles;
     for (unsigned int s = 0; s <= step_; ++s)
-      if (writes_frame(s))
+      if (writes_frame(s) || s == step_ || earlier_ends.count(s))
         {
           const double t = s == 0 ? scene_.start_time : history_[s - 1].time;
           solution.emplace_back(t, numbered_output("solution", s, ".vtu"));

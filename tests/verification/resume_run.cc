@@ -315,3 +315,83 @@ TEST(ResumeRun, RefusesWhenFramesItBuildsOnAreMissing)
       EXPECT_EQ(snapshot(output), before) << missing;
     }
 }
+
+// The end time is not part of the scene: a finished run resumed with a later end time goes
+// on from its last step and ends where a run to that time ends, its collections holding the
+// earlier end's frame besides the scene's; a checkpoint past the end time is refused.
+TEST(ResumeRun, FinishedRunGoesOnToALaterEndTime)
+{
+  fs::create_directories(folder);
+  const std::string longer = folder + "/longer", extended = folder + "/extended";
+  const std::string longer_scene = with_entry(ball_scene(longer), "end time", "0.15");
+  const RunResult   whole        = run_ritr(write_scene("longer", longer_scene));
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+
+  fs::remove_all(extended);
+  const RunResult first = run_ritr(write_scene("extended", ball_scene(extended)));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  ASSERT_EQ(summary_entry(extended, "complete"), "true");
+  const std::string scene = write_scene("extended", with_entry(ball_scene(extended), "end time", "0.15"));
+  const RunResult   r     = run_ritr(scene + " --resume");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("resuming after step 10/15"), std::string::npos) << r.output;
+
+  double largest = 0;
+  for (const unsigned int s : {0u, 3u, 6u, 9u, 12u, 15u})
+    {
+      char name[32];
+      std::snprintf(name, sizeof(name), "/nodes-%05u.csv", s);
+      largest = std::max(largest, max_difference(numbers(longer + name), numbers(extended + name)));
+    }
+  std::cout << "largest difference of u, x, v between the extended run and the run to t = 0.15: " << largest
+            << std::endl;
+  EXPECT_LE(largest, 1e-12);
+  std::vector<double> steps;
+  for (unsigned int s = 1; s <= 15; ++s)
+    steps.push_back(s);
+  EXPECT_EQ(csv_column(extended + "/log.csv", "step"), steps);
+  const auto energy_a = csv_column(longer + "/log.csv", "energy"), energy_b = csv_column(extended + "/log.csv", "energy");
+  ASSERT_EQ(energy_a.size(), energy_b.size());
+  for (std::size_t i = 0; i < energy_a.size(); ++i)
+    EXPECT_NEAR(energy_a[i], energy_b[i], 1e-10 * std::abs(energy_a[i])) << "step " << i + 1;
+  EXPECT_EQ(summary_entry(extended, "complete"), "true");
+  EXPECT_EQ(summary_entry(extended, "steps"), "15");
+  for (const char *entry : {"final_energy", "total_newton_iterations", "total_outer_iterations"})
+    EXPECT_EQ(summary_entry(longer, entry), summary_entry(extended, entry)) << entry;
+
+  // The collections: the run to t = 0.15's frames and the first part's last (step 10), once each.
+  for (const std::string stem : {"solution", "reference", "obstacles"})
+    {
+      const std::string collection = read_file(extended + "/" + stem + ".pvd");
+      for (const unsigned int s : {0u, 3u, 6u, 9u, 10u, 12u, 15u})
+        {
+          char name[48];
+          std::snprintf(name, sizeof(name), "%s-%05u.vtu", stem.c_str(), s);
+          const auto at = collection.find(name);
+          EXPECT_NE(at, std::string::npos) << name << '\n' << collection;
+          EXPECT_EQ(collection.find(name, at + 1), std::string::npos) << name << " twice";
+        }
+      const std::string uninterrupted = read_file(longer + "/" + stem + ".pvd");
+      EXPECT_EQ(std::count(collection.begin(), collection.end(), '\n'),
+                std::count(uninterrupted.begin(), uninterrupted.end(), '\n') + 1)
+        << collection;
+    }
+
+  // Resumed once more, to a later end again: the frames of both earlier ends stay listed.
+  const RunResult again = run_ritr(write_scene("extended", with_entry(ball_scene(extended), "end time", "0.17")) + " --resume");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("resuming after step 15/17"), std::string::npos) << again.output;
+  const std::string solution = read_file(extended + "/solution.pvd");
+  for (const char *name : {"solution-00010.vtu", "solution-00015.vtu", "solution-00017.vtu"})
+    EXPECT_NE(solution.find(name), std::string::npos) << name << '\n' << solution;
+
+  // Back to an earlier end time: refused with one line, nothing touched.
+  const auto      before  = snapshot(extended);
+  const RunResult shorter = run_ritr(write_scene("extended", ball_scene(extended)) + " --resume");
+  EXPECT_EQ(shorter.exit_code, 2) << shorter.output;
+  EXPECT_EQ(std::count(shorter.output.begin(), shorter.output.end(), '\n'), 1) << shorter.output;
+  EXPECT_NE(shorter.output.find(extended + "/checkpoint.bin: is at step 17 (t = 0.17), past the end time of "),
+            std::string::npos)
+    << shorter.output;
+  EXPECT_EQ(snapshot(extended), before);
+}

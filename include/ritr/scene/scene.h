@@ -144,9 +144,9 @@ namespace ritr
     // The line of each entry set in the parameter file ("Body 0/radius" -> 12).
     std::map<std::string, unsigned int> entry_lines;
     // "set Section/entry = value" for every entry whose value as parsed differs from its default,
-    // one per line, but for the output directory and the thread count: what makes two scenes
-    // the same run (checkpoints refuse another scene's), whatever the file's comments and
-    // layout, and whatever entries a newer ritr adds with defaults that keep its results.
+    // one per line, but for the output directory, the thread counts and the end time: what makes
+    // two scenes the same run (checkpoints refuse another scene's), whatever the file's comments
+    // and layout, and whatever entries a newer ritr adds with defaults that keep its results.
     std::string parameter_listing;
 
     bool dynamic() const { return mode == "dynamic"; }
