@@ -98,6 +98,31 @@ namespace
     return m[1];
   }
 
+  // Largest difference of u, x and v between two runs' nodal CSV frames at `steps`.
+  double largest_node_difference(const std::string &a, const std::string &b, const std::vector<unsigned int> &steps)
+  {
+    double largest = 0;
+    for (const unsigned int s : steps)
+      {
+        char name[32];
+        std::snprintf(name, sizeof(name), "/nodes-%05u.csv", s);
+        largest = std::max(largest, max_difference(numbers(a + name), numbers(b + name)));
+      }
+    return largest;
+  }
+
+  // `resumed`'s log.csv has each of the steps 1..n_steps once, with `whole`'s energies (12 digits).
+  void expect_same_steps(const std::string &whole, const std::string &resumed, const unsigned int n_steps)
+  {
+    std::vector<double> steps;
+    for (unsigned int s = 1; s <= n_steps; ++s)
+      steps.push_back(s);
+    EXPECT_EQ(csv_column(resumed + "/log.csv", "step"), steps);
+    const auto energy_a = csv_column(whole + "/log.csv", "energy"), energy_b = csv_column(resumed + "/log.csv", "energy");
+    ASSERT_EQ(energy_a.size(), energy_b.size());
+    for (std::size_t i = 0; i < energy_a.size(); ++i)
+      EXPECT_NEAR(energy_a[i], energy_b[i], 1e-10 * std::abs(energy_a[i])) << "step " << i + 1;
+  }
 } // namespace
 
 TEST(ResumeRun, KilledAndResumedRunMatchesTheUninterruptedOne)
@@ -124,27 +149,15 @@ TEST(ResumeRun, KilledAndResumedRunMatchesTheUninterruptedOne)
   EXPECT_LT(std::stoi(resumed_after[1]), 9) << "killed before the step 9 frame";
 
   // Positions, velocities and reference positions of every frame (17 digits).
-  double largest = 0;
+  std::vector<unsigned int> frames;
   for (unsigned int s = 0; s <= n_steps; ++s)
     if (s % output_every == 0 || s == n_steps)
-      {
-        char name[32];
-        std::snprintf(name, sizeof(name), "/nodes-%05u.csv", s);
-        largest = std::max(largest, max_difference(numbers(whole + name), numbers(killed + name)));
-      }
+      frames.push_back(s);
+  const double largest = largest_node_difference(whole, killed, frames);
   std::cout << "largest difference of u, x, v between the resumed and the uninterrupted run: " << largest
             << std::endl;
   EXPECT_LE(largest, 1e-12);
-
-  // Each step once in log.csv, with the uninterrupted run's energies (12 digits).
-  std::vector<double> steps;
-  for (unsigned int s = 1; s <= n_steps; ++s)
-    steps.push_back(s);
-  EXPECT_EQ(csv_column(killed + "/log.csv", "step"), steps);
-  const auto energy_a = csv_column(whole + "/log.csv", "energy"), energy_b = csv_column(killed + "/log.csv", "energy");
-  ASSERT_EQ(energy_a.size(), energy_b.size());
-  for (std::size_t i = 0; i < energy_a.size(); ++i)
-    EXPECT_NEAR(energy_a[i], energy_b[i], 1e-10 * std::abs(energy_a[i])) << "step " << i + 1;
+  expect_same_steps(whole, killed, n_steps);
   // newton.csv: the same iterations, each once.
   for (const char *c : {"step", "solve", "iteration"})
     EXPECT_EQ(csv_column(whole + "/newton.csv", c), csv_column(killed + "/newton.csv", c)) << c;
@@ -336,24 +349,11 @@ TEST(ResumeRun, FinishedRunGoesOnToALaterEndTime)
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("resuming after step 10/15"), std::string::npos) << r.output;
 
-  double largest = 0;
-  for (const unsigned int s : {0u, 3u, 6u, 9u, 12u, 15u})
-    {
-      char name[32];
-      std::snprintf(name, sizeof(name), "/nodes-%05u.csv", s);
-      largest = std::max(largest, max_difference(numbers(longer + name), numbers(extended + name)));
-    }
+  const double largest = largest_node_difference(longer, extended, {0, 3, 6, 9, 12, 15});
   std::cout << "largest difference of u, x, v between the extended run and the run to t = 0.15: " << largest
             << std::endl;
   EXPECT_LE(largest, 1e-12);
-  std::vector<double> steps;
-  for (unsigned int s = 1; s <= 15; ++s)
-    steps.push_back(s);
-  EXPECT_EQ(csv_column(extended + "/log.csv", "step"), steps);
-  const auto energy_a = csv_column(longer + "/log.csv", "energy"), energy_b = csv_column(extended + "/log.csv", "energy");
-  ASSERT_EQ(energy_a.size(), energy_b.size());
-  for (std::size_t i = 0; i < energy_a.size(); ++i)
-    EXPECT_NEAR(energy_a[i], energy_b[i], 1e-10 * std::abs(energy_a[i])) << "step " << i + 1;
+  expect_same_steps(longer, extended, 15);
   EXPECT_EQ(summary_entry(extended, "complete"), "true");
   EXPECT_EQ(summary_entry(extended, "steps"), "15");
   for (const char *entry : {"final_energy", "total_newton_iterations", "total_outer_iterations"})
