@@ -7,6 +7,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -454,6 +455,23 @@ namespace ritr
     }
   } // namespace
 
+  namespace
+  {
+    // Where the outputs go and how many threads assemble or factorize do not change the
+    // results beyond round-off: a moved output directory resumes, and so does a run on
+    // another machine. Nor does the end time change the steps before it: a finished run
+    // resumed with a later one goes on.
+    const std::vector<std::pair<std::string, std::string>> same_run_entries = {
+      {"", "output directory"}, {"", "end time"}, {"Solver", "threads"}, {"Solver", "factorization threads"}};
+  } // namespace
+
+  bool leaves_the_run_unchanged(const std::string &entry)
+  {
+    return std::any_of(same_run_entries.begin(), same_run_entries.end(), [&](const auto &e) {
+      return entry == (e.first.empty() ? e.second : e.first + "/" + e.second);
+    });
+  }
+
   Scene read_scene(const std::string &file)
   {
     const SceneFile  scene_file = read_scene_file(file);
@@ -466,16 +484,18 @@ namespace ritr
         if (!scene_file.sets_an_entry)
           throw InputError(file + ": sets no entry (an empty scene would run every default)");
         Scene scene = validated_scene(prm, scene_file, file);
-        // Where the outputs go and how many threads assemble or factorize do not change the
-        // results beyond round-off: a moved output directory resumes, and so does a run on
-        // another machine. Nor does the end time change the steps before it: a finished run
-        // resumed with a later one goes on.
-        prm.set("output directory", "");
-        prm.set("end time", prm_value(Scene().end_time));
-        prm.enter_subsection("Solver");
-        prm.set("threads", "0");
-        prm.set("factorization threads", "1");
-        prm.leave_subsection();
+        ParameterHandler defaults;
+        declare(defaults);
+        for (const auto &[section, entry] : same_run_entries)
+          {
+            for (ParameterHandler *p : {&prm, &defaults})
+              if (!section.empty())
+                p->enter_subsection(section);
+            prm.set(entry, defaults.get(entry));
+            for (ParameterHandler *p : {&prm, &defaults})
+              if (!section.empty())
+                p->leave_subsection();
+          }
         scene.parameter_listing = entries_away_from_defaults(prm);
         return scene;
       }

@@ -29,7 +29,7 @@ namespace ritr
         log_newton_iteration(record, z);
       };
     stepper_ = make_stepper(*problem_, monitor);
-    scene_hash_ = scene_fingerprint();
+    scene_hash_ = scene_fingerprint(scene_.parameter_listing);
   }
 
   template <int dim>

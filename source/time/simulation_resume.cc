@@ -85,9 +85,9 @@ namespace ritr
       return {entries.begin(), entries.end()};
     }
 
-    // Why a checkpoint of the scene with entries `there` is not a run of `scene_file` with
-    // entries `here`: the first entry that differs, or the meshes and initial states.
-    std::string scene_difference(const std::string &here, const std::string &there, const std::string &scene_file)
+    // The first entry, but for those that leave a run unchanged, whose value differs between
+    // `scene_file`'s entries `here` and a checkpoint's `there`, with both values; empty if none.
+    std::string entry_difference(const std::string &here, const std::string &there, const std::string &scene_file)
     {
       const auto here_entries = entries_of(here), there_entries = entries_of(there);
       const auto value        = [](const std::map<std::string, std::string> &entries, const std::string &name) {
@@ -99,19 +99,19 @@ namespace ritr
         for (const auto &[name, v] : *entries)
           names.insert(name);
       for (const auto &name : names)
-        if (value(here_entries, name) != value(there_entries, name))
+        if (!leaves_the_run_unchanged(name) && value(here_entries, name) != value(there_entries, name))
           return name + " is " + value(here_entries, name) + " in " + scene_file + ", " +
                  value(there_entries, name) + " in the checkpoint's scene";
-      return "the meshes or initial state that " + scene_file + " gives differ";
+      return "";
     }
   } // namespace
 
   template <int dim>
-  std::uint64_t Simulation<dim>::scene_fingerprint() const
+  std::uint64_t Simulation<dim>::scene_fingerprint(const std::string &listing) const
   {
     // The entries set away from their defaults, as parsed (comments and layout do not count),
     // and what they produced from files the scene names (meshes, obstacles).
-    std::uint64_t h = fnv1a(scene_.parameter_listing.data(), scene_.parameter_listing.size());
+    std::uint64_t h = fnv1a(listing.data(), listing.size());
     h = hash_of(mesh_.cells, h);
     for (const Eigen::VectorXd *v : {&problem_->initial_reference, &problem_->initial_positions,
                                      &problem_->initial_velocity, &problem_->initial_obstacle_positions})
@@ -182,9 +182,15 @@ namespace ritr
     if (c.dimension != dim)
       throw InputError(file + ": is of a " + std::to_string(c.dimension) + "D run, " + scene_.parameter_file +
                        " is " + std::to_string(dim) + "D");
-    if (c.scene_hash != scene_hash_)
-      throw InputError(file + ": belongs to another scene (" +
-                       scene_difference(scene_.parameter_listing, c.scene_entries, scene_.parameter_file) + ")");
+    // The same scene: the same entries, compared by value, so that a checkpoint of a ritr that
+    // listed entries this one leaves out still resumes; and the same meshes and initial state,
+    // by the checkpoint's fingerprint taken again with its own listing.
+    if (const std::string entry = entry_difference(scene_.parameter_listing, c.scene_entries, scene_.parameter_file);
+        !entry.empty())
+      throw InputError(file + ": belongs to another scene (" + entry + ")");
+    if (scene_fingerprint(c.scene_entries) != c.scene_hash)
+      throw InputError(file + ": belongs to another scene (the meshes or initial state that " +
+                       scene_.parameter_file + " gives differ)");
     const unsigned int n_steps = scene_.n_steps();
     if (c.u.size() != u_.size() || c.x.size() != x_.size() || c.v.size() != v_.size() ||
         c.obstacle_positions.size() != obstacle_positions_.size() || c.history.size() != c.step)

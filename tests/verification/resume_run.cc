@@ -12,6 +12,9 @@
 #include <regex>
 #include <thread>
 
+#include <ritr/scene/parameters.h>
+#include <ritr/time/simulation.h>
+
 #include "run_ritr.h"
 
 using namespace ritr::test_support;
@@ -266,6 +269,60 @@ TEST(ResumeRun, RefusesMissingDamagedOrForeignCheckpoints)
   const RunResult r = run_ritr(write_scene("bad/moved", moved_scene) + " --resume");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("already complete"), std::string::npos) << r.output;
+}
+
+// A checkpoint of a ritr whose scene listing held entries this one leaves out (the end time
+// and the output directory, as ritr's listing did until those stopped counting) resumes: the
+// entries are compared by value without them, the meshes by the checkpoint's own fingerprint.
+// Changing a mesh is still refused.
+TEST(ResumeRun, ResumesCheckpointsWhoseListingHoldsEntriesThatNoLongerCount)
+{
+  const std::string output = folder + "/older_listing";
+  fs::remove_all(output);
+  fs::create_directories(folder);
+  const std::string scene_file = write_scene("older_listing", replaced(small_scene, "OUTPUT", output));
+  {
+    ritr::Scene scene = ritr::read_scene(scene_file);
+    EXPECT_EQ(scene.parameter_listing.find("end time"), std::string::npos) << scene.parameter_listing;
+    scene.parameter_listing = "set end time = 0.02\nset output directory = \n" + scene.parameter_listing;
+    ritr::Simulation<2> simulation(scene);
+    simulation.run();
+  }
+  ASSERT_EQ(summary_entry(output, "complete"), "true");
+  const RunResult r = run_ritr(scene_file + " --resume");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("already complete"), std::string::npos) << r.output;
+
+  const std::string other_mesh = write_scene("older_listing", replaced(replaced(small_scene, "OUTPUT", output),
+                                                                       "subdivisions = 4, 1", "subdivisions = 5, 1"));
+  const RunResult refused = run_ritr(other_mesh + " --resume");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("belongs to another scene (Body 0/subdivisions is 5, 1 in "), std::string::npos)
+    << refused.output;
+}
+
+// The same entries with another mesh in the file they name: refused, naming the meshes.
+TEST(ResumeRun, RefusesWhenTheMeshFileChanged)
+{
+  const std::string output = folder + "/mesh_file", mesh = folder + "/mesh_file.msh";
+  fs::remove_all(output);
+  fs::create_directories(folder);
+  const std::string wedge = read_file(source_dir() + "/meshes/wedge.msh");
+  write_file(mesh, wedge);
+  const std::string scene = write_scene("mesh_file", replaced(replaced(small_scene, "OUTPUT", output),
+                                                              "set shape = rectangle\n  set upper = 1, 0.2\n  set subdivisions = 4, 1",
+                                                              "set shape = file\n  set file = " + fs::absolute(mesh).string()));
+  const RunResult first = run_ritr(scene);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  // The wedge's apex moved by 1e-3.
+  write_file(mesh, replaced(wedge, "\n1 0 0 0\n", "\n1 0.001 0 0\n"));
+  const auto      before = snapshot(output);
+  const RunResult r      = run_ritr(scene + " --resume");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("belongs to another scene (the meshes or initial state that " + scene + " gives differ)"),
+            std::string::npos)
+    << r.output;
+  EXPECT_EQ(snapshot(output), before);
 }
 
 namespace

@@ -80,8 +80,9 @@ namespace ritr
     void write_checkpoint() const;
     // The per-frame files of the frames up to `last_step`, as named in the output directory.
     std::vector<std::string> frame_files(unsigned int last_step) const;
-    // Identifies the scene a checkpoint belongs to: its parameters and its initial mesh.
-    std::uint64_t scene_fingerprint() const;
+    // Identifies the scene a checkpoint belongs to: its parameters (`listing`, a
+    // Scene::parameter_listing) and its initial mesh.
+    std::uint64_t scene_fingerprint(const std::string &listing) const;
     // Wall time of the run so far, over every process that ran a part of it.
     double wall_seconds() const;
     // A row of newton.csv (Solver/newton log); rows are numbered by step and by solve.
