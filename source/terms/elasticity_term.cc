@@ -163,13 +163,8 @@ namespace ritr
     CellHessian cell;
     cell.F               = geo.F;
     cell.density_hessian = energy_density_hessian<dim>(materials_.of_cell(c), geo.F);
-    // dF/dx: F_kj = sum_a x_ak dN_a/dX_j.
-    cell.dF_dx.setZero();
-    for (int a = 0; a <= dim; ++a)
-      for (int k = 0; k < dim; ++k)
-        for (int j = 0; j < dim; ++j)
-          cell.dF_dx(k * dim + j, a * dim + k) = geo.shape_gradients[a][j];
-    cell.scale = weight_ * geo.measure;
+    cell.shape_gradients = geo.shape_gradients;
+    cell.scale           = weight_ * geo.measure;
     return cell;
   }
 

@@ -8,6 +8,8 @@
 #include <ritr/elasticity/density_hessian.h>
 #include <ritr/terms/energy_term.h>
 
+#include <array>
+
 namespace ritr
 {
   template <int dim>
@@ -32,13 +34,36 @@ namespace ritr
     // A cell's Hessian in x as d2Psi/dF2 (which the projection acts on) mapped by dF/dx.
     struct CellHessian
     {
-      SmallMatrix<dim, double>                    F;
-      DensityHessian<dim>                         density_hessian;
-      Eigen::Matrix<double, dim * dim, cell_dofs> dF_dx;
-      double                                      scale;  // weight times cell measure
+      SmallMatrix<dim, double>                     F;
+      DensityHessian<dim>                          density_hessian;
+      std::array<std::array<double, dim>, dim + 1> shape_gradients;  // dN_a/dX_j
+      double                                       scale;            // weight times cell measure
+      // scale dF/dx^T m dF/dx, with F_kj = sum_a x_ak dN_a/dX_j: only dN_a/dX_j of dF/dx's
+      // entries are not zero, so the products run over those (a third of the dense products'
+      // arithmetic, which Eigen also sent through its GEMM path).
       Eigen::Matrix<double, cell_dofs, cell_dofs> element_matrix(const DensityHessian<dim> &m) const
       {
-        return scale * dF_dx.transpose() * m * dF_dx;
+        Eigen::Matrix<double, cell_dofs, dim * dim> left;  // scale dF/dx^T m
+        for (int a = 0; a <= dim; ++a)
+          for (int k = 0; k < dim; ++k)
+            for (int column = 0; column < dim * dim; ++column)
+              {
+                double sum = 0;
+                for (int j = 0; j < dim; ++j)
+                  sum += shape_gradients[a][j] * m(k * dim + j, column);
+                left(a * dim + k, column) = scale * sum;
+              }
+        Eigen::Matrix<double, cell_dofs, cell_dofs> result;
+        for (int row = 0; row < cell_dofs; ++row)
+          for (int b = 0; b <= dim; ++b)
+            for (int l = 0; l < dim; ++l)
+              {
+                double sum = 0;
+                for (int j = 0; j < dim; ++j)
+                  sum += left(row, l * dim + j) * shape_gradients[b][j];
+                result(row, b * dim + l) = sum;
+              }
+        return result;
       }
     };
     CellHessian cell_hessian(const TermPoint &p, std::size_t cell) const;
