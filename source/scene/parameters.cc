@@ -453,10 +453,7 @@ namespace ritr
           listing += "set " + entries[i].first + " = " + entries[i].second + "\n";
       return listing;
     }
-  } // namespace
 
-  namespace
-  {
     // Where the outputs go and how many threads assemble or factorize do not change the
     // results beyond round-off: a moved output directory resumes, and so does a run on
     // another machine. Nor does the end time change the steps before it: a finished run
