@@ -8,6 +8,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -433,9 +434,17 @@ namespace ritr
 
   namespace
   {
-    // "set Section/entry = value", one line per entry whose value differs from its default, in
-    // the listing's order (listing_entries reads it back). Entries left at their defaults are
-    // left out, so that an entry a newer ritr declares does not make a scene another scene.
+    // Where the outputs go and how many threads assemble or factorize do not change the
+    // results beyond round-off: a moved output directory resumes, and so does a run on
+    // another machine. Nor does the end time change the steps before it: a finished run
+    // resumed with a later one goes on.
+    const std::array<std::string, 4> same_run_entries = {
+      {"output directory", "end time", "Solver/threads", "Solver/factorization threads"}};
+
+    // "set Section/entry = value", one line per entry whose value differs from its default,
+    // but for those that leave the run unchanged, in the listing's order (listing_entries
+    // reads it back). Entries left at their defaults are left out, so that an entry a newer
+    // ritr declares does not make a scene another scene.
     std::string entries_away_from_defaults(const ParameterHandler &prm)
     {
       ParameterHandler defaults;
@@ -449,24 +458,15 @@ namespace ritr
       const auto  entries         = printed(prm);
       std::string listing;
       for (std::size_t i = 0; i < entries.size(); ++i)
-        if (entries[i] != default_entries[i])
+        if (entries[i] != default_entries[i] && !leaves_the_run_unchanged(entries[i].first))
           listing += "set " + entries[i].first + " = " + entries[i].second + "\n";
       return listing;
     }
-
-    // Where the outputs go and how many threads assemble or factorize do not change the
-    // results beyond round-off: a moved output directory resumes, and so does a run on
-    // another machine. Nor does the end time change the steps before it: a finished run
-    // resumed with a later one goes on.
-    const std::vector<std::pair<std::string, std::string>> same_run_entries = {
-      {"", "output directory"}, {"", "end time"}, {"Solver", "threads"}, {"Solver", "factorization threads"}};
   } // namespace
 
   bool leaves_the_run_unchanged(const std::string &entry)
   {
-    return std::any_of(same_run_entries.begin(), same_run_entries.end(), [&](const auto &e) {
-      return entry == (e.first.empty() ? e.second : e.first + "/" + e.second);
-    });
+    return std::find(same_run_entries.begin(), same_run_entries.end(), entry) != same_run_entries.end();
   }
 
   Scene read_scene(const std::string &file)
@@ -481,18 +481,6 @@ namespace ritr
         if (!scene_file.sets_an_entry)
           throw InputError(file + ": sets no entry (an empty scene would run every default)");
         Scene scene = validated_scene(prm, scene_file, file);
-        ParameterHandler defaults;
-        declare(defaults);
-        for (const auto &[section, entry] : same_run_entries)
-          {
-            for (ParameterHandler *p : {&prm, &defaults})
-              if (!section.empty())
-                p->enter_subsection(section);
-            prm.set(entry, defaults.get(entry));
-            for (ParameterHandler *p : {&prm, &defaults})
-              if (!section.empty())
-                p->leave_subsection();
-          }
         scene.parameter_listing = entries_away_from_defaults(prm);
         return scene;
       }

@@ -67,6 +67,22 @@ namespace ritr
       return steps;
     }
 
+    // The steps up to a checkpoint's `last_step` that have frames: the scene's
+    // (`writes_frame`), the checkpoint's own (a checkpoint comes with a frame, at the last
+    // step too, which a later end time makes a step in between) and those of the ends of a
+    // run's earlier parts (in `directory`: the frames up to a checkpoint are).
+    template <typename WritesFrame>
+    std::vector<unsigned int> frame_steps(const unsigned int last_step, const fs::path &directory,
+                                          const WritesFrame &writes_frame)
+    {
+      const std::set<unsigned int> earlier_ends = solution_frame_steps(directory);
+      std::vector<unsigned int>    steps;
+      for (unsigned int s = 0; s <= last_step; ++s)
+        if (writes_frame(s) || s == last_step || earlier_ends.count(s))
+          steps.push_back(s);
+      return steps;
+    }
+
     template <typename T>
     std::uint64_t hash_of(const std::vector<T> &v, const std::uint64_t hash)
     {
@@ -152,21 +168,17 @@ namespace ritr
   template <int dim>
   std::vector<std::string> Simulation<dim>::frame_files(const unsigned int last_step) const
   {
-    // Besides the scene's frames, the checkpoint's own (a checkpoint comes with a frame, at
-    // the last step too, which a later end time makes a step in between) and those of the
-    // ends of a run's earlier parts (in the directory: the frames up to a checkpoint are).
-    const std::set<unsigned int> earlier_ends = solution_frame_steps(scene_.output_directory);
-    std::vector<std::string>     files;
-    for (unsigned int s = 0; s <= last_step; ++s)
-      if (writes_frame(s) || s == last_step || earlier_ends.count(s))
-        {
-          for (const char *stem : {"solution", "reference"})
-            files.push_back(numbered_output(stem, s, ".vtu"));
-          if (!obstacles_.empty())
-            files.push_back(numbered_output("obstacles", s, ".vtu"));
-          if (scene_.write_nodal_csv)
-            files.push_back(numbered_output("nodes", s, ".csv"));
-        }
+    std::vector<std::string> files;
+    const auto scene_frame = [&](const unsigned int s) { return writes_frame(s); };
+    for (const unsigned int s : frame_steps(last_step, scene_.output_directory, scene_frame))
+      {
+        for (const char *stem : {"solution", "reference"})
+          files.push_back(numbered_output(stem, s, ".vtu"));
+        if (!obstacles_.empty())
+          files.push_back(numbered_output("obstacles", s, ".vtu"));
+        if (scene_.write_nodal_csv)
+          files.push_back(numbered_output("nodes", s, ".csv"));
+      }
     return files;
   }
 
@@ -256,16 +268,15 @@ namespace ritr
     const fs::path directory = scene_.output_directory;
     // The collections list the frames up to the checkpoint before later frames go, so
     // that no collection ever names a missing file.
-    const std::set<unsigned int> earlier_ends = solution_frame_steps(directory);  // as in frame_files()
     std::vector<std::pair<double, std::string>> solution, reference, obstacles;
-    for (unsigned int s = 0; s <= step_; ++s)
-      if (writes_frame(s) || s == step_ || earlier_ends.count(s))
-        {
-          const double t = s == 0 ? scene_.start_time : history_[s - 1].time;
-          solution.emplace_back(t, numbered_output("solution", s, ".vtu"));
-          reference.emplace_back(t, numbered_output("reference", s, ".vtu"));
-          obstacles.emplace_back(t, numbered_output("obstacles", s, ".vtu"));
-        }
+    const auto scene_frame = [&](const unsigned int s) { return writes_frame(s); };
+    for (const unsigned int s : frame_steps(step_, directory, scene_frame))
+      {
+        const double t = s == 0 ? scene_.start_time : history_[s - 1].time;
+        solution.emplace_back(t, numbered_output("solution", s, ".vtu"));
+        reference.emplace_back(t, numbered_output("reference", s, ".vtu"));
+        obstacles.emplace_back(t, numbered_output("obstacles", s, ".vtu"));
+      }
     outputs_->solution.assign(solution);
     outputs_->reference.assign(reference);
     if (!obstacles_.empty())
