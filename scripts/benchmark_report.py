@@ -459,6 +459,12 @@ def namespace(name, result):
             raise ReportError(f"no run {run_name} in the result")
         return found[0]
 
+    def sweep_mean(run_name, until=math.inf):
+        """A sweep run's mean Hausdorff distance over its frames up to `until` (every frame by
+        default: the whole run, whatever window ranks the sweep)."""
+        d = [x for t, x in sweep_run(run_name).get("hausdorff_over_time", []) if t <= until]
+        return sum(d) / len(d) if d else math.nan
+
     h = result.get("headline") or {}
     same = [r for r in fixed if r.v == runs[0].v] if runs else []
     return dict(
@@ -468,7 +474,7 @@ def namespace(name, result):
         pct=pct, rel=rel, times=times, share=share, values=values, differences=differences,
         phase=phase, source_phase=source_phase, kinetic_peak=kinetic_peak, kinetic_gap=kinetic_gap, phase_table=phase_table,
         corners=corners_on_vertex, verdict=lambda: verdict_of(result), plots=lambda: plot_links(name, result),
-        sweep_run=sweep_run,
+        sweep_run=sweep_run, sweep_mean=sweep_mean,
         abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip, dict=dict)
 
 

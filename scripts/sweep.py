@@ -3,11 +3,13 @@
 
     scripts/sweep.py SCENE.prm --fixed 0 1 2 --reference 3
         --vary "Adaptivity/hessian=reduced,quasi-newton" --vary "Adaptivity/max iterations=1,2,4"
-        [--set PATH=VALUE ...] [--work DIR] [--reuse] [--quick] [--out RESULT.json]
+        [--set PATH=VALUE ...] [--accuracy-until T] [--work DIR] [--reuse] [--quick] [--out RESULT.json]
 
 The fixed rungs are the scene without adaptivity refined k more times (scripts/ladder.py);
 the reference is one more, finer rung that every other run is measured against (mean over
-frames of the Hausdorff distance between deformed boundaries, `ritr-compare`). The r-ITR runs
+frames of the Hausdorff distance between deformed boundaries, `ritr-compare`; with
+`--accuracy-until T` over the frames up to time T only, where the reference is converged, as in
+scripts/ladder.py). The r-ITR runs
 are the scene on its own mesh with every combination of the `--vary` values (each
 PATH=V1,V2,...), `--set` applying to all runs. A run's time is its own wall time from
 summary.json (set-up, steps and output; not the program's start-up, the same for every run).
@@ -58,7 +60,7 @@ def run(args, scene_text, name, overrides, work, reference=None):
     result = run_rung(args, scene_text, name, overrides, work)  # with --reuse, a finished run is kept
     result["seconds"] = result.get("total_wall_seconds", result["wall_seconds"])
     if reference is not None:
-        compare(args, result, reference)
+        compare(args, result, reference, until=args.accuracy_until)
     return result
 
 
@@ -71,6 +73,8 @@ def main():
     p.add_argument("--vary", action="append", default=[], metavar="PATH=V1,V2",
                    help="an r-ITR setting and its values; the runs take every combination")
     p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE", help="override for every run")
+    p.add_argument("--accuracy-until", type=float, metavar="T",
+                   help="accuracy over the frames up to time T only (where the reference is converged)")
     p.add_argument("--work", help="directory for the runs (default: a temporary one)")
     p.add_argument("--reuse", action="store_true",
                    help="keep the runs of the work directory that finished with the same input (scripts/ladder.py)")
@@ -113,6 +117,7 @@ def main():
     ratios = [r for r in measured_ritr if (r["time_to_accuracy"] or {}).get("interpolated_ratio")]
     best = min(ratios, key=lambda r: r["time_to_accuracy"]["interpolated_ratio"]) if ratios else None
     result = {"scene": scene_name(args.scene), "overrides": common, "vary": args.vary, "reference": reference["name"],
+              "accuracy_until": args.accuracy_until,
               "runs": [reference] + rungs + ritr_runs,
               "front": [r["name"] for r in front(measured)],
               "ritr_front": [r["name"] for r in front(measured_ritr)],

@@ -24,7 +24,9 @@ def settings_text(run):
 
 
 def table(result):
-    lines = ["| run | settings | vertices | time [s] | mean Hausdorff | time / fixed mesh of its accuracy | front |",
+    until = result.get("accuracy_until")
+    window = f", t <= {until:g}" if until is not None else ""
+    lines = [f"| run | settings | vertices | time [s] | mean Hausdorff{window} | time / fixed mesh of its accuracy | front |",
              "| --- | --- | --- | --- | --- | --- | --- |"]
     for r in result["runs"]:
         if r["name"] == result["reference"]:
@@ -75,7 +77,8 @@ def plot(result, path):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time of the run [s]")
-    ax.set_ylabel(f"mean Hausdorff distance to {result['reference']}")
+    until = result.get("accuracy_until")
+    ax.set_ylabel(f"mean Hausdorff distance to {result['reference']}" + (f", t <= {until:g}" if until is not None else ""))
     ax.set_title(os.path.splitext(os.path.basename(result["scene"]))[0].replace("_", " "))
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="best")
