@@ -86,9 +86,16 @@ namespace ritr::contact
                   const Eigen::MatrixXd &V1, const double min_separation_fraction,
                   const double inflation)
   {
+    return max_step<dim>(surface, V0, V1, find_candidates<dim>(surface, V0, V1, inflation), min_separation_fraction);
+  }
+
+  template <int dim>
+  double max_step(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V0,
+                  const Eigen::MatrixXd &V1, const std::vector<Candidate> &candidates,
+                  const double min_separation_fraction)
+  {
     if (!(min_separation_fraction > 0.0 && min_separation_fraction < 1.0))
       throw std::invalid_argument("max_step: min_separation_fraction must be in (0, 1)");
-    const auto candidates = find_candidates<dim>(surface, V0, V1, inflation);
     // Each pair is solved with t_max = 1 (not the running minimum) so that the result does
     // not depend on thread scheduling.
     return tbb::parallel_reduce(
@@ -115,7 +122,9 @@ namespace ritr::contact
   template double additive_ccd<dim>(ContactKind, const StencilVector<dim> &,                  \
                                     const StencilVector<dim> &, double, double, long);        \
   template double max_step<dim>(const CollisionSurface<dim> &, const Eigen::MatrixXd &,       \
-                                const Eigen::MatrixXd &, double, double);
+                                const Eigen::MatrixXd &, double, double);                     \
+  template double max_step<dim>(const CollisionSurface<dim> &, const Eigen::MatrixXd &,       \
+                                const Eigen::MatrixXd &, const std::vector<Candidate> &, double);
   RITR_INSTANTIATE(1)
   RITR_INSTANTIATE(2)
   RITR_INSTANTIATE(3)

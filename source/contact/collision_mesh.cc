@@ -267,10 +267,18 @@ namespace ritr
   template <int dim>
   double CollisionMesh<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
   {
-    // Inflating by dhat keeps the separation guarantee (d >= 0.1 d0) for every pair that can
-    // come within the barrier's range, not only for pairs whose swept boxes touch: a pair
-    // ending exactly in contact could otherwise slip through with a round-off-sized gap.
-    return contact::max_step<dim>(surface_, vertices(z), vertices(z + dz), 0.1, dhat_);
+    return max_step(z, dz, candidates_along(z, dz));
+  }
+
+  template <int dim>
+  double CollisionMesh<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz,
+                                      const CollisionCandidates &along) const
+  {
+    // The candidates along the step are inflated by dhat, which keeps the separation guarantee
+    // (d >= 0.1 d0) for every pair that can come within the barrier's range, not only for pairs
+    // whose swept boxes touch: a pair ending exactly in contact could otherwise slip through
+    // with a round-off-sized gap.
+    return contact::max_step<dim>(surface_, vertices(z), vertices(z + dz), along, 0.1);
   }
 
   template <int dim>

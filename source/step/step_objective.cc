@@ -70,8 +70,9 @@ namespace ritr
   {
     if (!terms_.has_contact())
       return 1.0;
-    candidates_ = terms_.candidates_along(z, dz);
-    return terms_.max_step(z, dz);
+    auto bound  = terms_.step_bound(z, dz);
+    candidates_ = std::move(bound.candidates);
+    return bound.fraction;
   }
 
   template class StepObjective<1>;

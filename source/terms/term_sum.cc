@@ -142,12 +142,15 @@ namespace ritr
   }
 
   template <int dim>
-  double TermSum<dim>::max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
+  typename TermSum<dim>::StepBound TermSum<dim>::step_bound(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
   {
-    double fraction = 1.0;
+    // Every process bounds the step over all pairs (CCD is cheap beside the broad phase) and
+    // keeps its own share of them for the energy.
+    CollisionCandidates along    = collisions_ ? collisions_->candidates_along(z, dz) : CollisionCandidates{};
+    double              fraction = 1.0;
     for (const auto &t : terms_)
-      fraction = std::min(fraction, t->max_step(z, dz));
-    return work_share().min(fraction);
+      fraction = std::min(fraction, t->max_step(z, dz, along));
+    return {work_share().min(fraction), owned(std::move(along))};
   }
 
   template <int dim>

@@ -12,6 +12,7 @@
 //   - the first step goes exactly to the bound d >= s d0, later steps to d >= s d0 / 2,
 //     stopping (returning the previous t) as soon as d < s d0.
 // 1D vertex-vertex pairs are solved analytically (largest t with |d(t)| >= s d0).
+#include <ritr/contact/broad_phase.h>
 #include <ritr/contact/collision_surface.h>
 #include <ritr/contact/distance.h>
 
@@ -37,4 +38,10 @@ namespace ritr::contact
   double max_step(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V0,
                   const Eigen::MatrixXd &V1, double min_separation_fraction = 0.1,
                   double inflation = 0.0);
+  // The same over pairs already found: `candidates` are find_candidates(surface, V0, V1,
+  // inflation), for callers that need them for the energy along the step as well.
+  template <int dim>
+  double max_step(const CollisionSurface<dim> &surface, const Eigen::MatrixXd &V0,
+                  const Eigen::MatrixXd &V1, const std::vector<Candidate> &candidates,
+                  double min_separation_fraction);
 } // namespace ritr::contact

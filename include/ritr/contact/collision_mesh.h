@@ -53,8 +53,10 @@ namespace ritr
     CollisionCandidates candidates_at(const Eigen::VectorXd &z) const;
     CollisionCandidates candidates_along(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
 
-    // Largest fraction of dz that continuous collision detection certifies.
+    // Largest fraction of dz that continuous collision detection certifies; `along` are
+    // candidates_along(z, dz) when the caller has them already.
     double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz, const CollisionCandidates &along) const;
     double minimum_distance(const Eigen::VectorXd &z) const;  // over all primitive pairs
     bool   has_intersections(const Eigen::VectorXd &z) const;  // crossing primitives
     // For naming what overlaps at z: a state vertex of each of two crossing primitives, or of

@@ -27,9 +27,9 @@ namespace ritr
     void   add_hessian_and_projection(const TermPoint &p, MatrixAssembly<dim> &h) const override;
     void   add_reference_derivatives(const TermPoint &p, ReferenceBlock block, bool coupling,
                                      ReferenceDerivativeAssembly<dim> &d) const override;
-    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const override
+    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz, const CollisionCandidates &along) const override
     {
-      return collisions_.max_step(z, dz);
+      return collisions_.max_step(z, dz, along);
     }
 
   private:

@@ -109,11 +109,14 @@ namespace ritr
     {
       add_reference_derivatives(p, ReferenceBlock::exact, false, d);
     }
-    // Largest fraction of the step dz from z that keeps the state admissible (contact: CCD).
-    virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const
+    // Largest fraction of the step dz from z that keeps the state admissible (contact: CCD
+    // over `along`, the pairs whose boxes swept along the step come within dhat, of all
+    // processes: CollisionMesh::candidates_along).
+    virtual double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz, const CollisionCandidates &along) const
     {
       (void)z;
       (void)dz;
+      (void)along;
       return 1.0;
     }
   };

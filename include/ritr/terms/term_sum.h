@@ -76,8 +76,16 @@ namespace ritr
     // The exact Hessian of E with the projection's changes (energy_term.h).
     void   add_energy_hessian_and_projection(const Eigen::VectorXd &z, const CollisionCandidates &candidates,
                                              MatrixAssembly<dim> &h) const;
-    // Smallest of the terms' admissible fractions of the step dz.
-    double max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+    // Smallest of the terms' admissible fractions of the step dz (over all processes), with
+    // candidates_along(z, dz): one broad phase serves both the bound and the energy along
+    // the step.
+    struct StepBound
+    {
+      double              fraction;
+      CollisionCandidates candidates;
+    };
+    StepBound step_bound(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const;
+    double    max_step(const Eigen::VectorXd &z, const Eigen::VectorXd &dz) const { return step_bound(z, dz).fraction; }
 
     // R(z, u): every term.
     double objective(const Eigen::VectorXd &z, const CollisionCandidates &candidates) const;
