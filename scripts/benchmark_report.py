@@ -473,6 +473,7 @@ def namespace(name, result):
         finest=fixed[-1] if fixed else None, match=by_name.get(h.get("matching_fixed") or ""),
         pct=pct, rel=rel, times=times, share=share, values=values, differences=differences,
         phase=phase, source_phase=source_phase, kinetic_peak=kinetic_peak, kinetic_gap=kinetic_gap, phase_table=phase_table,
+        front_ratio=lambda r: interpolated_ratio(r, runs, result.get("reference")),
         corners=corners_on_vertex, verdict=lambda: verdict_of(result), plots=lambda: plot_links(name, result),
         sweep_run=sweep_run, sweep_mean=sweep_mean,
         abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip, dict=dict)

@@ -341,9 +341,11 @@ namespace ritr
     const double max_radius     = 100 * initial_radius;
     const bool   quasi_newton   = settings_.hessian == RitrHessian::quasi_newton;
     // Quasi-Newton steps take one or two outer iterations, so the region a step ends with is
-    // where the next one starts (never below the initial radius).
+    // where the next one starts (never below the initial radius). The reduced solve does so on
+    // request: with one iteration per step and a fresh region each step, the masticator's mesh
+    // could not follow the bar by more than half a cell per step.
     double  step_radius = initial_radius;
-    double &radius      = quasi_newton ? carried_radius_ : step_radius;
+    double &radius      = quasi_newton || settings_.carry_trust_region ? carried_radius_ : step_radius;
     radius              = std::max(radius, initial_radius);
     double       first_gradient = 0;
     MeasureBarrierModel<dim> barrier(mesh_, basis_, w_hat_, measure_barrier_.stiffness());

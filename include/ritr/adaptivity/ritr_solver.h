@@ -46,6 +46,9 @@ namespace ritr
     // tolerance); the step then ends with a tight solve at its mesh.
     unsigned int trial_iterations        = 0;
     unsigned int max_outer_iterations    = 0;
+    // Trust region: each step's region starts with the radius the last step ended with
+    // (quasi-newton always; reduced when set), instead of at the initial radius.
+    bool         carry_trust_region      = false;
     double       sliding_tolerance       = 0;  // eps_b
     double       filter_threshold        = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
     // Stiffness kappa_w of the reference measure barrier; 0 takes the contact barrier's

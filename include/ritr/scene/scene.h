@@ -92,6 +92,7 @@ namespace ritr
     unsigned    quadrature_subdivisions   = 0;    // composite transfer rule; 0: automatic
     TransferIntegrationChoice transfer_integration = TransferIntegrationChoice::automatic;
     unsigned    max_iterations    = 0;    // 0: 1 in dynamics, 100 in statics
+    bool        carry_trust_region = false;  // reduced: each step's region starts where the last ended
 
     // Subsection Adaptivity: its entries declared with this struct's values as defaults, and
     // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.
