@@ -20,8 +20,8 @@ interpolated between the rungs. With `--accuracy energy`
 (statics) the runs are ranked by their final energy instead: each minimises the same potential
 over a conforming space of deformations, so the lower equilibrium is the more accurate one.
 
-`--ritr-rungs` adds r-ITR runs on refined meshes, `--ritr-variant NAME PATH=VALUE` an r-ITR run
-on the scene's own mesh with one entry changed (e.g. the deep punch with its base's reference
+`--ritr-rungs` adds r-ITR runs on refined meshes, `--ritr-variant NAME PATH=VALUE...` an r-ITR run
+on the scene's own mesh with those entries changed (e.g. the deep punch with its base's reference
 nodes held); `--mpirun-from K` runs the fixed rungs of K and more refinements on `--ranks` processes (`mpirun`,
 doc/parallel.md), their memory the sum of the processes' peaks; `--pass-below` and
 `--corner-touch` measure the last frame
@@ -300,8 +300,9 @@ def main():
                    help="override for every run, e.g. 'Adaptivity/epsilon r=1e-6'")
     p.add_argument("--ritr-rungs", type=int, nargs="+", default=[0],
                    help="refinements of r-ITR runs besides the scene's own mesh (r-ITR under refinement)")
-    p.add_argument("--ritr-variant", nargs=2, action="append", default=[], metavar=("NAME", "PATH=VALUE"),
-                   help="an extra r-ITR run ritr_NAME on the scene's own mesh with one entry overridden")
+    p.add_argument("--ritr-variant", nargs="+", action="append", default=[], metavar="NAME PATH=VALUE",
+                   help="an extra r-ITR run ritr_NAME on the scene's own mesh with the entries that follow "
+                        "the name overridden")
     p.add_argument("--mpirun-from", type=int, metavar="K",
                    help="fixed rungs of K and more refinements run under mpirun on --ranks processes")
     p.add_argument("--ranks", type=int, default=2, help="processes of the --mpirun-from rungs")
@@ -331,10 +332,12 @@ def main():
 
     with open(args.scene) as f:
         scene_text = f.read()
-    for setting in args.set + [s for _, s in args.ritr_variant]:
+    if any(len(variant) < 2 for variant in args.ritr_variant):
+        p.error("--ritr-variant: a name and at least one PATH=VALUE")
+    for setting in args.set + [s for variant in args.ritr_variant for s in variant[1:]]:
         if "=" not in setting:
             p.error(f"'{setting}' is not PATH=VALUE")
-    if any(name.startswith("r") and name[1:].isdigit() for name, _ in args.ritr_variant):
+    if any(variant[0].startswith("r") and variant[0][1:].isdigit() for variant in args.ritr_variant):
         p.error("--ritr-variant: names rN are the refined r-ITR runs'")
     common = dict(item.split("=", 1) for item in args.set)
     if args.mpirun_from is not None:  # containers and CI machines often run as root
@@ -362,7 +365,8 @@ def main():
     reference = runs[-1]
     if not args.quick:
         runs += [rung(f"ritr_r{k}", k, True) for k in sorted(set(args.ritr_rungs) - {0})]
-    runs += [rung(f"ritr_{name}", 0, True, dict([setting.split("=", 1)])) for name, setting in args.ritr_variant]
+    runs += [rung(f"ritr_{name}", 0, True, dict(s.split("=", 1) for s in settings))
+             for name, *settings in args.ritr_variant]
     dynamic = entries(scene_text).get("mode", "dynamic") == "dynamic"
     densities = material_densities(scene_text)
     for run in runs:

@@ -385,11 +385,11 @@ namespace ritr
           }
         if (r.outer_iterations == 0)
           first_gradient = g.norm();
-        // The forcing term's cap is tight because |g| often stays near its first value while
-        // the mesh creeps along a flat valley: with a cap of 0.1 the steps then left a tenth
-        // of the model's gradient each time, and late ball-on-spikes steps took 76-200
-        // iterations of ~1e-9 decrease each.
-        const double forcing   = forcing_term(g.norm(), first_gradient, 1e-2);
+        // The forcing term's cap (model tolerance) is tight by default because |g| often stays
+        // near its first value while the mesh creeps along a flat valley: with a cap of 0.1 the
+        // steps then left a tenth of the model's gradient each time, and late ball-on-spikes
+        // steps took 76-200 iterations of ~1e-9 decrease each.
+        const double forcing   = forcing_term(g.norm(), first_gradient, settings_.model_tolerance);
         const double round_off = 1e-13 * std::max(1.0, std::abs(r.objective));
         for (bool accepted = false; !accepted;)
           {

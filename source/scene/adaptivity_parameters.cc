@@ -23,7 +23,8 @@ namespace ritr
     prm.declare_entry("sliding tolerance", prm_value(d.sliding_tolerance), Patterns::Double(0), "eps_b: boundary nodes slide in facets whose normals agree within 1 - n.n <= eps_b (and along straight 3D edges).");
     prm.declare_entry("decrease tolerance", prm_value(d.decrease_tolerance), Patterns::Double(0), "hessian = reduced or quasi-newton: a step also ends (outer_stop small_decrease) once the model predicts a decrease of R below this fraction of the decrease the step has already made; 0: the square root of epsilon r (1e-2 for 1e-4), so that epsilon r stays the one knob.");
     prm.declare_entry("max iterations", prm_value(d.max_iterations), Patterns::Integer(0), "Outer iterations per step; 0: 1 in dynamics (the defaults' time to accuracy, doc/benchmarks.md), 100 in statics.");
-    prm.declare_entry("carry trust region", prm_value(d.carry_trust_region), Patterns::Bool(), "hessian = reduced: each step's outer trust region starts with the radius the last step ended with (quasi-newton's always does), not at half the smallest initial cell. With one outer iteration per step in dynamics the mesh can then follow the body by more than half a cell per step (doc/benchmarks.md, Masticator, carried region).");
+    prm.declare_entry("carry trust region", prm_value(d.carry_trust_region), Patterns::Bool(), "hessian = reduced: each step's outer trust region starts with the radius the last step ended with (quasi-newton's always does), not at half the smallest initial cell. With one outer iteration per step in dynamics the mesh can then follow the body by more than half a cell per step (doc/benchmarks.md, Masticator).");
+    prm.declare_entry("model tolerance", prm_value(d.model_tolerance), Patterns::Double(1e-12, 0.9), "hessian = reduced or quasi-newton: the largest residual, relative to the outer gradient, to which CG solves the outer model's Newton equation inside the trust region (it tightens as sqrt(|g| / |g_0|) over a step's outer iterations). A loose model solve costs fewer products with the reduced Hessian (each a solve with H_xx) and stops on the directions CG finds first (doc/benchmarks.md, Masticator).");
     prm.declare_entry("inner tolerance factor", prm_value(d.inner_tolerance_factor), Patterns::Double(1), "hessian = reduced or quasi-newton: inexact inner solves. A trial mesh's Newton tolerance is Solver/newton tolerance times min(this, |du|_inf / epsilon r), so it tightens as the outer step converges; a step whose accepted state was solved more loosely goes on with tight solves from a tight one at its mesh. 1: every inner solve tight.");
     prm.declare_entry("trial iterations", prm_value(d.trial_iterations), Patterns::Integer(0), "hessian = reduced or quasi-newton: inexact inner solves. A trial mesh's Newton stops after this many iterations even short of its tolerance (E there bounds its minimum from above, so an accepted trial still lowers R); a step whose accepted state was solved short of the tolerance goes on with tight solves from a tight one at its mesh. 0: every trial solved to its tolerance.");
     prm.leave_subsection();
@@ -48,6 +49,7 @@ namespace ritr
     sliding_tolerance         = prm.get_double("sliding tolerance");
     max_iterations            = prm.get_integer("max iterations");
     carry_trust_region        = prm.get_bool("carry trust region");
+    model_tolerance           = prm.get_double("model tolerance");
     prm.leave_subsection();
   }
 } // namespace ritr

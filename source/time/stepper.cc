@@ -108,6 +108,7 @@ namespace ritr
     settings.inner_tolerance_factor = a.inner_tolerance_factor;
     settings.trial_iterations       = a.trial_iterations;
     settings.carry_trust_region     = a.carry_trust_region;
+    settings.model_tolerance        = a.model_tolerance;
     settings.measure_barrier_stiffness = a.measure_barrier_stiffness;
     settings.transfer_integration      = problem.transfer_integration();
     settings.sliding_dirichlet_nodes   = problem.sliding_dirichlet_nodes;

@@ -72,6 +72,27 @@ TEST(SteihaugCG, InsideALargeRegionItIsTheNewtonStep)
   EXPECT_NEAR(r.predicted_change, model(S, g, r.step), 1e-12 * std::abs(r.predicted_change));
 }
 
+TEST(SteihaugCG, ALooseToleranceStopsEarlyBelowTheCauchyPoint)
+{
+  // Adaptivity/model tolerance: CG stops inside a large region once |S p + g| <= eta |g|, in
+  // fewer products than the tight solve, and its step still lowers the model at least as much
+  // as the Cauchy point (CG's first iterate; later ones only lower it further).
+  const Eigen::MatrixXd S = random_symmetric(40, 2.0, 7) + 30 * Eigen::VectorXd::LinSpaced(40, 0, 1).asDiagonal().toDenseMatrix();
+  ASSERT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues().minCoeff(), 0);
+  const Eigen::VectorXd g     = random_vector(40, 8);
+  const auto            apply = [&](const Eigen::VectorXd &p) { return Eigen::VectorXd(S * p); };
+  const auto            tight = steihaug_cg(apply, g, 1e6, 1e-2 * g.norm(), 100);
+  const auto            loose = steihaug_cg(apply, g, 1e6, 0.2 * g.norm(), 100);
+  EXPECT_TRUE(loose.interior);
+  EXPECT_LE((S * loose.step + g).norm(), 0.2 * g.norm());
+  EXPECT_GT((S * loose.step + g).norm(), 1e-2 * g.norm());  // it did stop early
+  EXPECT_LT(loose.iterations, tight.iterations);
+  const Eigen::VectorXd cauchy = -(g.squaredNorm() / g.dot(S * g)) * g;
+  EXPECT_LE(model(S, g, loose.step), model(S, g, cauchy));
+  EXPECT_LE(model(S, g, tight.step), model(S, g, loose.step));
+  EXPECT_NEAR(loose.predicted_change, model(S, g, loose.step), 1e-12 * std::abs(loose.predicted_change));
+}
+
 TEST(SteihaugCG, ASmallRegionEndsOnItsBoundaryBelowTheCauchyPoint)
 {
   const Eigen::MatrixXd S = random_symmetric(12, 8.0, 3);

@@ -49,6 +49,9 @@ namespace ritr
     // Trust region: each step's region starts with the radius the last step ended with
     // (quasi-newton always; reduced when set), instead of at the initial radius.
     bool         carry_trust_region      = false;
+    // Trust region: the forcing term's cap, CG's largest residual on the outer model relative
+    // to the outer gradient.
+    double       model_tolerance         = 1e-2;
     double       sliding_tolerance       = 0;  // eps_b
     double       filter_threshold        = 1e-3;  // filtered Hessian: relative to the largest |dx/du|
     // Stiffness kappa_w of the reference measure barrier; 0 takes the contact barrier's

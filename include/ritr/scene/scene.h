@@ -93,6 +93,7 @@ namespace ritr
     TransferIntegrationChoice transfer_integration = TransferIntegrationChoice::automatic;
     unsigned    max_iterations    = 0;    // 0: 1 in dynamics, 100 in statics
     bool        carry_trust_region = false;  // reduced: each step's region starts where the last ended
+    double      model_tolerance    = 1e-2;   // trust region: CG's relative residual on the outer model, at most
 
     // Subsection Adaptivity: its entries declared with this struct's values as defaults, and
     // parsed into it. parse_parameters throws EntryError for a value no pattern rejects.
