@@ -89,16 +89,29 @@ def material_densities(scene_text):
                         if path.startswith("Material ") and path.endswith("/density")})
 
 
+def run_entries(prm_text):
+    """The entries that decide what a run computes: a fixed-mesh run (adaptivity off) leaves the
+    other `Adaptivity` entries unread, so a scene's new outer-solve settings do not make its
+    fixed rungs stale; the output directory is where the ladder finds the run, however --work
+    was spelled."""
+    found = entries(prm_text)
+    found.pop("output directory", None)
+    if found.get("Adaptivity/enabled", "false").strip().lower() in ("false", "0", "no"):
+        found = {k: v for k, v in found.items() if not k.startswith("Adaptivity/") or k == "Adaptivity/enabled"}
+    return found
+
+
 def earlier_run(measured, prm_text, directory):
     """What an earlier ladder left of a run in the same work directory (`--reuse`): "finished"
     with its recorded measurement when it ran the same input to its end, "stopped" when it left a
-    checkpoint to resume from, else None (run it afresh)."""
+    checkpoint to resume from, else None (run it afresh). The same input is the same entries
+    (`run_entries`): an edited comment in the scene does not cost a rerun of hours."""
     try:
         with open(measured) as f:
             earlier = json.load(f)
     except (OSError, ValueError):
         return None
-    if earlier.get("prm") != prm_text:
+    if run_entries(earlier.get("prm", "")) != run_entries(prm_text):
         return None
     try:
         with open(os.path.join(directory, "summary.json")) as f:
@@ -324,7 +337,7 @@ def main():
                    help="print one line comparing r-ITR with the fixed mesh of its size instead of the JSON")
     p.add_argument("--work", help="directory for the runs (default: a temporary one)")
     p.add_argument("--reuse", action="store_true",
-                   help="runs that an earlier ladder in --work finished with the same input are taken as they "
+                   help="runs that an earlier ladder in --work finished with the same entries are taken as they "
                         "are; those it left stopped are resumed from their checkpoints")
     p.add_argument("--ritr", default=os.path.join(build, "ritr"))
     p.add_argument("--compare", default=os.path.join(build, "ritr-compare"))

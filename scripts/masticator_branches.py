@@ -99,8 +99,8 @@ def main():
     after = [mean_after(run, BITE_END) for run in fine]
     sentence = (f"From the state of r-ITR at the scene's settings at t = {args.start:g} the "
                 f"{fine[0].get('n_vertices', 0):,}-vertex fixed mesh ends {after[0]:.3f} from {reference['name']} on "
-                f"average after the bite (t > {BITE_END:g}); from that of r-ITR with {args.iterations} outer iterations "
-                f"per step, {after[1]:.3f}.")
+                f"average after the bite (t > {BITE_END:g}); from that of r-ITR with {args.iterations} outer "
+                f"iteration{'s' if args.iterations != 1 else ''} per step, {after[1]:.3f}.")
     result = {"scene": "masticator_branches", "quick": False, "overrides": common, "reference": reference["name"],
               "runs": [ritr, reference] + [r for r in runs if r not in (ritr, reference)], "accuracy": "hausdorff",
               "start": args.start, "headline": {"sentence": sentence}}

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """`ladder.py --reuse`: which runs an earlier ladder left in the work directory are taken as they
-are (finished with the same input), resumed (stopped at a checkpoint) or run afresh
+are (finished with the same entries, whatever the comments), resumed (stopped at a checkpoint) or run afresh
 (scripts/ladder.py, earlier_run)."""
 import json
 import os
@@ -54,6 +54,29 @@ class EarlierRun(unittest.TestCase):
         self.write({"prm": PRM, "exit_code": 0, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": True},
                    checkpoint=True)
         self.assertIsNone(earlier_run(self.measured, "set end time = 2\n", self.directory))
+
+    def test_edited_comments_keep_a_finished_run(self):
+        measurement = {"prm": PRM, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
+        self.write(measurement, {"complete": True}, checkpoint=True)
+        commented = "# a scene whose comments were reworded\nset end time = 1   # seconds\n"
+        self.assertEqual(earlier_run(self.measured, commented, self.directory), ("finished", measurement))
+
+    def test_outer_solve_settings_keep_a_finished_fixed_run(self):
+        fixed = "subsection Adaptivity\n  set enabled = false\n  set max iterations = 1\nend\n"
+        measurement = {"prm": fixed, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
+        self.write(measurement, {"complete": True}, checkpoint=True)
+        retuned = fixed.replace("max iterations = 1", "max iterations = 3")
+        self.assertEqual(earlier_run(self.measured, retuned, self.directory), ("finished", measurement))
+        adaptive = retuned.replace("enabled = false", "enabled = true")
+        self.write(dict(measurement, prm=fixed.replace("enabled = false", "enabled = true")))
+        self.assertIsNone(earlier_run(self.measured, adaptive, self.directory))
+
+    def test_work_directory_spelled_otherwise_keeps_a_finished_run(self):
+        relative = "set output directory = build/paper/fixed_r3\nset end time = 1\n"
+        measurement = {"prm": relative, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
+        self.write(measurement, {"complete": True}, checkpoint=True)
+        absolute = relative.replace("build/paper", "/home/user/ritr/build/paper")
+        self.assertEqual(earlier_run(self.measured, absolute, self.directory), ("finished", measurement))
 
     def test_failed_run_without_checkpoint_runs_afresh(self):
         self.write({"prm": PRM, "exit_code": 3, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": False})
