@@ -34,12 +34,17 @@ class EarlierRun(unittest.TestCase):
         if checkpoint:
             open(os.path.join(self.directory, "checkpoint.bin"), "wb").close()
 
+    def finished(self, prm):
+        """An earlier ladder's finished run of `prm`, and its measurement."""
+        measurement = {"prm": prm, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
+        self.write(measurement, {"complete": True}, checkpoint=True)
+        return measurement
+
     def test_nothing_earlier_runs_afresh(self):
         self.assertIsNone(earlier_run(self.measured, PRM, self.directory))
 
     def test_finished_run_is_reused_with_its_measurement(self):
-        measurement = {"prm": PRM, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
-        self.write(measurement, {"complete": True}, checkpoint=True)
+        measurement = self.finished(PRM)
         self.assertEqual(earlier_run(self.measured, PRM, self.directory), ("finished", measurement))
 
     def test_stopped_run_is_resumed(self):
@@ -56,25 +61,22 @@ class EarlierRun(unittest.TestCase):
         self.assertIsNone(earlier_run(self.measured, "set end time = 2\n", self.directory))
 
     def test_edited_comments_keep_a_finished_run(self):
-        measurement = {"prm": PRM, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
-        self.write(measurement, {"complete": True}, checkpoint=True)
+        measurement = self.finished(PRM)
         commented = "# a scene whose comments were reworded\nset end time = 1   # seconds\n"
         self.assertEqual(earlier_run(self.measured, commented, self.directory), ("finished", measurement))
 
     def test_outer_solve_settings_keep_a_finished_fixed_run(self):
         fixed = "subsection Adaptivity\n  set enabled = false\n  set max iterations = 1\nend\n"
-        measurement = {"prm": fixed, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
-        self.write(measurement, {"complete": True}, checkpoint=True)
+        measurement = self.finished(fixed)
         retuned = fixed.replace("max iterations = 1", "max iterations = 3")
         self.assertEqual(earlier_run(self.measured, retuned, self.directory), ("finished", measurement))
         adaptive = retuned.replace("enabled = false", "enabled = true")
-        self.write(dict(measurement, prm=fixed.replace("enabled = false", "enabled = true")))
+        self.finished(fixed.replace("enabled = false", "enabled = true"))
         self.assertIsNone(earlier_run(self.measured, adaptive, self.directory))
 
     def test_work_directory_spelled_otherwise_keeps_a_finished_run(self):
         relative = "set output directory = build/paper/fixed_r3\nset end time = 1\n"
-        measurement = {"prm": relative, "exit_code": 0, "wall_seconds": 12.5, "peak_rss_bytes": 4096}
-        self.write(measurement, {"complete": True}, checkpoint=True)
+        measurement = self.finished(relative)
         absolute = relative.replace("build/paper", "/home/user/ritr/build/paper")
         self.assertEqual(earlier_run(self.measured, absolute, self.directory), ("finished", measurement))
 
