@@ -452,6 +452,21 @@ def namespace(name, result):
             lines.append(row([r.name, f"{r.v:,}"] + distances + peaks))
         return "\n".join(lines)
 
+    def end_drop(r, side, below=-0.5):
+        """The first frame time at which a run's left (side 0) or right (1) end is below height
+        `below` (ladder.py --end-heights); nan if it never is."""
+        return next((f[0] for f in r.data.get("end_heights_over_time", []) if f[1 + side] < below), math.nan)
+
+    def end_table(names, at):
+        """The heights of the named runs' left / right ends at the frame times `at`."""
+        lines = header(["run", "vertices"] + [f"t = {t:g}" for t in at])
+        for name in names:
+            heights = {round(f[0], 6): f[1:] for f in run(name).data.get("end_heights_over_time", [])}
+            cells = [" / ".join(fmt(y, "+.2f") for y in heights[round(t, 6)]) if round(t, 6) in heights else "-"
+                     for t in at]
+            lines.append(row([name, f"{run(name).v:,}"] + cells))
+        return "\n".join(lines)
+
     def sweep_run(run_name):
         """A run of a sweep, as its JSON has it."""
         found = [r for r in result.get("runs", []) if r["name"] == run_name]
@@ -475,7 +490,7 @@ def namespace(name, result):
         phase=phase, source_phase=source_phase, kinetic_peak=kinetic_peak, kinetic_gap=kinetic_gap, phase_table=phase_table,
         front_ratio=lambda r: interpolated_ratio(r, runs, result.get("reference")),
         corners=corners_on_vertex, verdict=lambda: verdict_of(result), plots=lambda: plot_links(name, result),
-        sweep_run=sweep_run, sweep_mean=sweep_mean,
+        sweep_run=sweep_run, sweep_mean=sweep_mean, end_drop=end_drop, end_table=end_table,
         abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip, dict=dict)
 
 

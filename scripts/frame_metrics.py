@@ -9,6 +9,9 @@ centroid_heights: the height of the bodies' deformed area centroid in every outp
 the frame's time (the paper's varying-friction figure). 2D only.
 kinetic_energies: the bodies' kinetic energy in every output frame, with the frame's time; it
 shows a coarse run storing and releasing energy that the fine one does not (the masticator).
+end_heights: the mean deformed height (y) of the material on the bodies' leftmost and rightmost
+reference ends in every output frame, with the frame's time: when a bar's ends come off the
+teeth (the masticator). 2D only.
 """
 import glob
 import os
@@ -129,3 +132,18 @@ def kinetic_energy(grid, densities):
 def kinetic_energies(directory, densities):
     """[[time, kinetic energy], ...] over the frames of solution.pvd (see kinetic_energy)."""
     return over_frames(directory, lambda grid: kinetic_energy(grid, densities))
+
+
+def end_height(grid):
+    """(left, right): the mean deformed height of the vertices whose reference x is the least /
+    the greatest (a bar's two end faces; r-ITR may slide them along the face, not off it)."""
+    reference = vtk_to_numpy(grid.GetPointData().GetArray("reference_position"))[:, 0]
+    y = points(grid)[:, 1]
+    tolerance = 1e-9 * (reference.max() - reference.min())
+    return [float(y[reference <= reference.min() + tolerance].mean()),
+            float(y[reference >= reference.max() - tolerance].mean())]
+
+
+def end_heights(directory):
+    """[[time, left end height, right end height], ...] over the frames of solution.pvd."""
+    return [[time, *heights] for time, heights in over_frames(directory, end_height)]

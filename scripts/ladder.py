@@ -26,7 +26,8 @@ nodes held); `--mpirun-from K` runs the fixed rungs of K and more refinements on
 doc/parallel.md), their memory the sum of the processes' peaks; `--pass-below` and
 `--corner-touch` measure the last frame
 (scripts/frame_metrics.py). Every run of a dynamic scene also records its kinetic energy in each
-output frame (`kinetic_energy_over_time`). `--quick` runs two steps of r-ITR and of the two
+output frame (`kinetic_energy_over_time`), and with `--end-heights` the heights of its two ends
+(`end_heights_over_time`). `--quick` runs two steps of r-ITR and of the two
 coarsest rungs, so that a scene cannot rot unnoticed. The exit code is 1 if any run failed or
 broke an invariant, or if `--require-lower-energy` finds an r-ITR run not below the fixed mesh
 of its size (the JSON is written first: a failing run stays in the results).
@@ -42,7 +43,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from accuracy_front import verdict  # noqa: E402
-from frame_metrics import centroid_heights, corner_distances, kinetic_energies, lowest_point  # noqa: E402
+from frame_metrics import centroid_heights, corner_distances, end_heights, kinetic_energies, lowest_point  # noqa: E402
 from prm_variant import entries, write_variant  # noqa: E402
 
 DEFAULT_DENSITY = 1000.0  # Material N/density when a scene sets none (ritr --print-parameters)
@@ -330,6 +331,9 @@ def main():
     p.add_argument("--corner-touch", type=float, metavar="D",
                    help="for each obstacle vertex within D of a body at the end, the distance to the nearest "
                         "deformed mesh vertex (2D; the paper's stamping figure)")
+    p.add_argument("--end-heights", action="store_true",
+                   help="record the height of the bodies' two reference ends in every frame (2D dynamics: "
+                        "when a bar's ends come off the teeth)")
     p.add_argument("--require-lower-energy", action="store_true",
                    help="fail unless every r-ITR run ends with a lower energy than the fixed rung of its size")
     p.add_argument("--out", help="result JSON (default: stdout)")
@@ -387,6 +391,8 @@ def main():
             compare(args, run, reference, until=args.accuracy_until)
         if dynamic and os.path.exists(os.path.join(run["directory"], "solution.pvd")):
             run["kinetic_energy_over_time"] = kinetic_energies(run["directory"], densities)
+            if args.end_heights:
+                run["end_heights_over_time"] = end_heights(run["directory"])
         if args.pass_below is not None and run["exit_code"] == 0:
             run["lowest_point"] = lowest_point(run["directory"])
             run["passes"] = run["lowest_point"] < args.pass_below

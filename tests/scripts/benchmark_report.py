@@ -6,6 +6,7 @@ anchors the README links."""
 import contextlib
 import io
 import json
+import math
 import os
 import shutil
 import sys
@@ -136,6 +137,20 @@ class BenchmarkReport(unittest.TestCase):
         self.assertEqual(names["rel"](1.1, 1.0, "lower", "higher"), "10 % higher")
         with self.assertRaises(benchmark_report.ReportError):
             benchmark_report.fill("{{run('nothing').E}}", names, "test")
+
+    def test_end_heights(self):
+        # ladder.py --end-heights: [time, left, right] per frame; an end is under the bar below -0.5.
+        with open(os.path.join(RESULTS, "deep_punch.json")) as f:
+            result = json.load(f)
+        result["runs"][0]["end_heights_over_time"] = [[0.0, 0.1, 0.2], [0.5, -0.6, 0.1], [1.0, -1.0, -0.7]]
+        names = benchmark_report.namespace("deep_punch", result)
+        ritr = names["ritr"]
+        self.assertEqual(names["end_drop"](ritr, 0), 0.5)
+        self.assertEqual(names["end_drop"](ritr, 1), 1.0)
+        self.assertEqual(names["end_drop"](ritr, 1, 0.15), 0.5)
+        self.assertTrue(math.isnan(names["end_drop"](names["finest"], 0)))  # no heights recorded
+        table = names["end_table"]([ritr.name], [0.5, 2.0]).splitlines()
+        self.assertEqual(table[2], f"| {ritr.name} | {ritr.v:,} | -0.60 / +0.10 | - |")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
-"""Kinetic energy of an output frame (scripts/frame_metrics.py, kinetic_energy) against values
-computed by hand: a rigidly spinning square (1/2 rho w^2 J, J = 1/6 for the unit square about its
-centre), a translating cube of tetrahedra (1/2 rho V |v|^2) and two materials of different density."""
+"""Measurements on output frames (scripts/frame_metrics.py) against values computed by hand.
+Kinetic energy: a rigidly spinning square (1/2 rho w^2 J, J = 1/6 for the unit square about its
+centre), a translating cube of tetrahedra (1/2 rho V |v|^2) and two materials of different density.
+End heights: a bar sheared so that its ends move by known heights, on a mesh whose end faces carry
+vertices at different heights."""
 import os
 import sys
 import tempfile
@@ -14,7 +16,7 @@ from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE, vtkUnstructur
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from frame_metrics import kinetic_energies, kinetic_energy  # noqa: E402
+from frame_metrics import end_height, end_heights, kinetic_energies, kinetic_energy  # noqa: E402
 
 
 def grid(reference, deformed, cells, cell_type, velocity, material):
@@ -49,6 +51,51 @@ def square_grid(n, velocity_of, material_of=lambda centre: 0):
                 [velocity_of(p) for p in reference], material)
 
 
+def write_series(directory, grids):
+    """solution-K.vtu for each grid and a solution.pvd that lists them at times 0, 0.5, 1, ..."""
+    entries = []
+    for k, g in enumerate(grids):
+        writer = vtkXMLUnstructuredGridWriter()
+        writer.SetFileName(os.path.join(directory, f"solution-{k:05d}.vtu"))
+        writer.SetInputData(g)
+        writer.Write()
+        entries.append(f'<DataSet timestep="{0.5 * k}" file="solution-{k:05d}.vtu"/>')
+    with open(os.path.join(directory, "solution.pvd"), "w") as f:
+        f.write('<VTKFile type="Collection"><Collection>' + "".join(entries) + "</Collection></VTKFile>")
+
+
+def bar_grid(left_drop, right_drop, nx=8, ny=3):
+    """The bar [-2, 2] x [-0.25, 0.25] in nx x ny squares cut into triangles, its deformed points
+    moved down by left_drop at x = -2 and right_drop at x = 2, linearly in between."""
+    xs, ys = numpy.linspace(-2, 2, nx + 1), numpy.linspace(-0.25, 0.25, ny + 1)
+    reference = numpy.array([[x, y, 0.0] for y in ys for x in xs])
+    drop = left_drop + (reference[:, 0] + 2) / 4 * (right_drop - left_drop)
+    deformed = reference - numpy.outer(drop, [0.0, 1.0, 0.0])
+    cells = []
+    for j in range(ny):
+        for i in range(nx):
+            a = j * (nx + 1) + i
+            cells += [(a, a + 1, a + nx + 2), (a, a + nx + 2, a + nx + 1)]
+    return grid(reference, deformed, cells, VTK_TRIANGLE, numpy.zeros_like(reference), [0] * len(cells))
+
+
+class EndHeights(unittest.TestCase):
+    def test_a_sheared_bar(self):
+        # The end faces' vertices sit at y = -0.25 ... 0.25, symmetric about 0: their mean is the drop.
+        left, right = end_height(bar_grid(1.2, -0.3))
+        self.assertAlmostEqual(left, -1.2, places=12)
+        self.assertAlmostEqual(right, 0.3, places=12)
+
+    def test_series_follows_the_pvd(self):
+        with tempfile.TemporaryDirectory() as d:
+            write_series(d, [bar_grid(0.0, 0.0), bar_grid(0.5, 0.0), bar_grid(1.0, 2.0)])
+            series = end_heights(d)
+        self.assertEqual([row[0] for row in series], [0.0, 0.5, 1.0])
+        for row, expected in zip(series, ([0.0, 0.0], [-0.5, 0.0], [-1.0, -2.0])):
+            self.assertAlmostEqual(row[1], expected[0], places=12)
+            self.assertAlmostEqual(row[2], expected[1], places=12)
+
+
 class KineticEnergy(unittest.TestCase):
     def test_spinning_square(self):
         w, rho = 2.5, 700.0
@@ -70,15 +117,7 @@ class KineticEnergy(unittest.TestCase):
 
     def test_series_follows_the_pvd(self):
         with tempfile.TemporaryDirectory() as d:
-            entries = []
-            for k, speed in enumerate((0.0, 1.0, 3.0)):
-                writer = vtkXMLUnstructuredGridWriter()
-                writer.SetFileName(os.path.join(d, f"solution-{k:05d}.vtu"))
-                writer.SetInputData(square_grid(2, lambda p: [0.0, speed, 0.0]))
-                writer.Write()
-                entries.append(f'<DataSet timestep="{0.5 * k}" file="solution-{k:05d}.vtu"/>')
-            with open(os.path.join(d, "solution.pvd"), "w") as f:
-                f.write('<VTKFile type="Collection"><Collection>' + "".join(entries) + "</Collection></VTKFile>")
+            write_series(d, [square_grid(2, lambda p, s=speed: [0.0, s, 0.0]) for speed in (0.0, 1.0, 3.0)])
             series = kinetic_energies(d, {0: 2.0})
         self.assertEqual([t for t, _ in series], [0.0, 0.5, 1.0])
         for (_, e), speed in zip(series, (0.0, 1.0, 3.0)):
