@@ -14,6 +14,7 @@ finer mesh follows an r-ITR run's path from T or goes its own way (doc/benchmark
 Masticator). The result has the ladder's layout (scripts/ladder.py).
 """
 import argparse
+import hashlib
 import os
 import subprocess
 import sys
@@ -37,6 +38,15 @@ def mean_after(run, time):
 def frame_at(directory, time):
     """(time, path) of a run's frame nearest to `time`."""
     return min(series(directory), key=lambda frame: abs(frame[0] - time))
+
+
+def frame_mesh_path(work, source_name, frame):
+    """Where the mesh of a source run's frame goes: named by the frame's content, so that a restart
+    from a frame that changed (its source run ran again) has other entries and `--reuse` runs it
+    again instead of keeping the restart from the old frame."""
+    with open(frame, "rb") as f:
+        digest = hashlib.sha256(f.read()).hexdigest()[:16]
+    return os.path.join(work, f"{source_name}_frame_{digest}.msh")
 
 
 def main():
@@ -76,7 +86,7 @@ def main():
     runs = [reference, ritr, more]
     for source in (ritr, more):
         time, frame = frame_at(source["directory"], args.start)
-        mesh = os.path.join(work, f"{source['name']}_frame.msh")
+        mesh = frame_mesh_path(work, source["name"], frame)
         subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "frame_mesh.py"),
                         frame, mesh], check=True)
         for k in sorted({0, args.refine}):

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """`ladder.py --reuse`: which runs an earlier ladder left in the work directory are taken as they
 are (finished with the same entries, whatever the comments), resumed (stopped at a checkpoint) or run afresh
-(scripts/ladder.py, earlier_run)."""
+(scripts/ladder.py, earlier_run); and masticator_branches.py's restarts, which run afresh once the
+frame they start from changed."""
 import json
 import os
 import sys
@@ -10,6 +11,7 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from ladder import earlier_run  # noqa: E402
+from masticator_branches import frame_mesh_path  # noqa: E402
 
 PRM = "set end time = 1\n"
 
@@ -83,6 +85,23 @@ class EarlierRun(unittest.TestCase):
     def test_failed_run_without_checkpoint_runs_afresh(self):
         self.write({"prm": PRM, "exit_code": 3, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": False})
         self.assertIsNone(earlier_run(self.measured, PRM, self.directory))
+
+    def test_restart_from_a_changed_frame_runs_afresh(self):
+        # The restart's entries name the frame's mesh, which is named by the frame's content: the
+        # same frame path with other content (its source run ran again) gives other entries.
+        frame = os.path.join(self.work.name, "solution-00088.vtu")
+
+        def restart_prm(content):
+            with open(frame, "w") as f:
+                f.write(content)
+            mesh = frame_mesh_path(self.work.name, "ritr", frame)
+            return f"set start from = {frame}\nsubsection Body 0\n  set file = {mesh}\nend\n"
+
+        earlier = restart_prm("the old run's frame")
+        self.finished(earlier)
+        self.assertEqual(restart_prm("the old run's frame"), earlier)
+        self.assertEqual(earlier_run(self.measured, earlier, self.directory)[0], "finished")
+        self.assertIsNone(earlier_run(self.measured, restart_prm("the new run's frame"), self.directory))
 
 
 if __name__ == "__main__":
