@@ -94,9 +94,11 @@ def run_entries(prm_text):
     """The entries that decide what a run computes: a fixed-mesh run (adaptivity off) leaves the
     other `Adaptivity` entries unread, so a scene's new outer-solve settings do not make its
     fixed rungs stale; the output directory is where the ladder finds the run, however --work
-    was spelled."""
+    was spelled; the Newton cap only decides where a run stops, so a run stopped on it resumes
+    with a larger one (as `ritr --resume` does)."""
     found = entries(prm_text)
     found.pop("output directory", None)
+    found.pop("Solver/max iterations", None)
     if found.get("Adaptivity/enabled", "false").strip().lower() in ("false", "0", "no"):
         found = {k: v for k, v in found.items() if not k.startswith("Adaptivity/") or k == "Adaptivity/enabled"}
     return found

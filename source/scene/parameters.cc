@@ -437,9 +437,10 @@ namespace ritr
     // Where the outputs go and how many threads assemble or factorize do not change the
     // results beyond round-off: a moved output directory resumes, and so does a run on
     // another machine. Nor does the end time change the steps before it: a finished run
-    // resumed with a later one goes on.
-    const std::array<std::string, 4> same_run_entries = {
-      {"output directory", "end time", "Solver/threads", "Solver/factorization threads"}};
+    // resumed with a later one goes on. Nor the Newton cap: it only decides where a run stops,
+    // so a run stopped on it resumes with a larger one.
+    const std::array<std::string, 5> same_run_entries = {
+      {"output directory", "end time", "Solver/threads", "Solver/factorization threads", "Solver/max iterations"}};
 
     // "set Section/entry = value", one line per entry whose value differs from its default,
     // but for those that leave the run unchanged, in the listing's order (listing_entries

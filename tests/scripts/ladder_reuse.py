@@ -82,6 +82,13 @@ class EarlierRun(unittest.TestCase):
         absolute = relative.replace("build/paper", "/home/user/ritr/build/paper")
         self.assertEqual(earlier_run(self.measured, absolute, self.directory), ("finished", measurement))
 
+    def test_run_stopped_on_the_newton_cap_resumes_with_a_larger_one(self):
+        capped = PRM + "subsection Solver\n  set max iterations = 1000\nend\n"
+        self.write({"prm": capped, "exit_code": 3, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": False},
+                   checkpoint=True)
+        status, _ = earlier_run(self.measured, capped.replace("1000", "5000"), self.directory)
+        self.assertEqual(status, "stopped")
+
     def test_failed_run_without_checkpoint_runs_afresh(self):
         self.write({"prm": PRM, "exit_code": 3, "wall_seconds": 1, "peak_rss_bytes": 1}, {"complete": False})
         self.assertIsNone(earlier_run(self.measured, PRM, self.directory))

@@ -1,7 +1,8 @@
 // `ritr SCENE.prm --resume`: a run killed (SIGKILL) between two checkpoints and resumed, twice,
 // ends where the uninterrupted run ends -- the same positions in every frame, the same
 // log.csv, newton.csv, collections and summary totals -- and a checkpoint that is missing,
-// damaged or of another scene is refused with one line and exit code 2, touching nothing.
+// damaged or of another scene is refused with one line and exit code 2, touching nothing; a run
+// stopped on the Newton cap or at its end time goes on with a larger one.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -384,6 +385,31 @@ TEST(ResumeRun, RefusesWhenFramesItBuildsOnAreMissing)
         << r.output;
       EXPECT_EQ(snapshot(output), before) << missing;
     }
+}
+
+// Nor is the Newton cap: a run stopped on it (exit code 3, the first contact step needs 11
+// iterations) resumes with a larger one from its last checkpoint and ends where a run that
+// never met the cap ends.
+TEST(ResumeRun, RunStoppedOnTheNewtonCapResumesWithALargerOne)
+{
+  fs::create_directories(folder);
+  const std::string uncapped = folder + "/uncapped", capped = folder + "/capped";
+  fs::remove_all(uncapped);
+  fs::remove_all(capped);
+  const RunResult whole = run_ritr(write_scene("uncapped", ball_scene(uncapped)));
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+
+  const RunResult stopped =
+    run_ritr(write_scene("capped", ball_scene(capped) + "subsection Solver\n  set max iterations = 8\nend\n"));
+  ASSERT_EQ(stopped.exit_code, 3) << stopped.output;
+  EXPECT_NE(stopped.output.find("no convergence in 8 Newton iterations"), std::string::npos) << stopped.output;
+
+  const RunResult r = run_ritr(write_scene("capped", ball_scene(capped)) + " --resume");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("resuming after step 0/10"), std::string::npos) << r.output;
+  EXPECT_LE(largest_node_difference(uncapped, capped, {0, 3, 6, 9, 10}), 1e-12);
+  expect_same_steps(uncapped, capped, n_steps);
+  EXPECT_EQ(summary_entry(capped, "complete"), "true");
 }
 
 // The end time is not part of the scene: a finished run resumed with a later end time goes
