@@ -452,6 +452,14 @@ def namespace(name, result):
             lines.append(row([r.name, f"{r.v:,}"] + distances + peaks))
         return "\n".join(lines)
 
+    def runs_like(prefix):
+        """The runs whose names start with `prefix`, in the result's order."""
+        return [r for r in runs if r.name.startswith(prefix)]
+
+    def mean(values):
+        values = list(values)
+        return sum(values) / len(values) if values else math.nan
+
     def end_drop(r, side, below=-0.5):
         """The first frame time at which a run's left (side 0) or right (1) end is below height
         `below` (ladder.py --end-heights); nan if it never is."""
@@ -491,6 +499,7 @@ def namespace(name, result):
         front_ratio=lambda r: interpolated_ratio(r, runs, result.get("reference")),
         corners=corners_on_vertex, verdict=lambda: verdict_of(result), plots=lambda: plot_links(name, result),
         sweep_run=sweep_run, sweep_mean=sweep_mean, end_drop=end_drop, end_table=end_table,
+        runs_like=runs_like, mean=mean,
         abs=abs, min=min, max=max, len=len, sum=sum, all=all, any=any, sorted=sorted, round=round, zip=zip, dict=dict)
 
 

@@ -149,6 +149,10 @@ class BenchmarkReport(unittest.TestCase):
         self.assertEqual(names["end_drop"](ritr, 1), 1.0)
         self.assertEqual(names["end_drop"](ritr, 1, 0.15), 0.5)
         self.assertTrue(math.isnan(names["end_drop"](names["finest"], 0)))  # no heights recorded
+        self.assertEqual([r.name for r in names["runs_like"]("fixed_")], [r.name for r in names["fixed"]])
+        self.assertEqual(names["runs_like"]("no such run"), [])
+        self.assertEqual(names["mean"]([1.0, 2.0, 6.0]), 3.0)
+        self.assertTrue(math.isnan(names["mean"]([])))
         table = names["end_table"]([ritr.name], [0.5, 2.0]).splitlines()
         self.assertEqual(table[2], f"| {ritr.name} | {ritr.v:,} | -0.60 / +0.10 | - |")
 
