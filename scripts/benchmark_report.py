@@ -298,6 +298,13 @@ def friction_verdict(result, runs):
 
 def hausdorff_verdict(result, runs):
     v = accuracy_verdict(result, runs)
+    head = result.get("headline") or {}
+    if v and head.get("draws"):
+        # scripts/ladder.py --draws: r-ITR judged by the mean over its run and perturbed repeats.
+        d = head["draws"]
+        repeats = f"`{d[1]}`" if len(d) == 2 else f"`{d[1]}` to `{d[-1]}`"
+        return (f"Judged over {len(d)} draws (`{d[0]}` and {repeats}, mean {head['ritr_mean_hausdorff']:.4f}) "
+                f"at the time of `{d[0]}`: {v['sentence']}")
     if v:
         return v["sentence"]
     return (result.get("headline") or {}).get("why", "no verdict") + "."
