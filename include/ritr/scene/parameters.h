@@ -22,9 +22,9 @@ namespace ritr
   std::vector<std::pair<std::string, std::string>> listing_entries(const std::string &listing);
 
   // Whether the entry "Section/entry" leaves a run the same run when it changes (where the
-  // outputs go, thread counts, the end time): Scene::parameter_listing leaves these out, and a
-  // checkpoint's listing is compared without them, so that one written by a ritr that still
-  // listed them resumes.
+  // outputs go, thread counts, the end time, the Newton cap, which decides only where a run
+  // stops): Scene::parameter_listing leaves these out, and a checkpoint's listing is compared
+  // without them, so that one written by a ritr that still listed them resumes.
   bool leaves_the_run_unchanged(const std::string &entry);
 
   constexpr unsigned int max_bodies = 8, max_materials = 8, max_dirichlet = 4, max_obstacles = 8;
