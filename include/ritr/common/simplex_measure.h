@@ -13,12 +13,11 @@
 
 namespace ritr
 {
-  // The signed measure of the cell with nodes `cell` at positions u (flat, node-major).
-  template <int dim>
-  SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives(const Eigen::VectorXd                   &u,
-                                                           const std::array<unsigned int, dim + 1> &cell)
+  // The signed measure of the cell with nodes `cell` at positions u (flat, node-major), in the
+  // dual numbers `Dual` (variables: node a, component k at a * dim + k).
+  template <int dim, typename Dual>
+  Dual cell_measure_in(const Eigen::VectorXd &u, const std::array<unsigned int, dim + 1> &cell)
   {
-    using Dual = SecondOrderDual<dim *(dim + 1)>;
     std::array<std::array<Dual, dim>, dim + 1> nodes;
     for (int a = 0; a <= dim; ++a)
       for (int k = 0; k < dim; ++k)
@@ -26,17 +25,20 @@ namespace ritr
     return simplex_measure<dim, Dual>(nodes);
   }
 
-  // The same with its gradient alone (first-order outer solves).
+  // With its gradient and Hessian.
+  template <int dim>
+  SecondOrderDual<dim *(dim + 1)> cell_measure_derivatives(const Eigen::VectorXd                   &u,
+                                                           const std::array<unsigned int, dim + 1> &cell)
+  {
+    return cell_measure_in<dim, SecondOrderDual<dim *(dim + 1)>>(u, cell);
+  }
+
+  // With its gradient alone (first-order outer solves).
   template <int dim>
   FirstOrderDual<dim *(dim + 1)> cell_measure_gradient(const Eigen::VectorXd                   &u,
                                                        const std::array<unsigned int, dim + 1> &cell)
   {
-    using Dual = FirstOrderDual<dim *(dim + 1)>;
-    std::array<std::array<Dual, dim>, dim + 1> nodes;
-    for (int a = 0; a <= dim; ++a)
-      for (int k = 0; k < dim; ++k)
-        nodes[a][k] = Dual::variable(a * dim + k, u[cell[a] * dim + k]);
-    return simplex_measure<dim, Dual>(nodes);
+    return cell_measure_in<dim, FirstOrderDual<dim *(dim + 1)>>(u, cell);
   }
 
   // The measure of the boundary facet with nodes `facet` at positions u: a segment's length in
