@@ -62,7 +62,7 @@ def percent(x):
 
 
 def seconds_text(t):
-    return f"{t:.2g}" if t < 1 else f"{t:.2f}" if t < 10 else f"{t:.1f}" if t < 100 else f"{t:.0f}"
+    return f"{t:.2g}" if t < 1 else f"{t:.2f}" if t < 10 else f"{t:.1f}" if t < 100 else f"{t:,.0f}"
 
 
 def fmt(value, spec=""):
@@ -230,11 +230,19 @@ def energy_table(result, runs):
 
 
 def gap_table(result, runs):
-    lines = header(["run"] + COST + ["lowest point", "outcome"])
+    """Each run's outcome and distance to the reference; with `ritr_distance` (scripts/ladder.py)
+    also r-ITR's distance to each fixed rung: whether the ladder moves toward r-ITR."""
+    to_ritr = any("ritr_distance" in r.data for r in runs)
+    lines = header(["run"] + COST + ["lowest point", "outcome", f"mean Hausdorff to {result['reference']}"]
+                   + (["r-ITR's mean Hausdorff to it"] if to_ritr else []))
     for r in runs:
         outcome = ("passes" if r.passes else "locks") if r.passes is not None else "-"
         low = f"{r.low:.3f}" if not math.isnan(r.low) else "-"
-        lines.append(row([name_cell(r)] + cost_cells(r) + [low, outcome]))
+        cells = [name_cell(r)] + cost_cells(r) + [low, outcome, f"{r.h:.3g}" if not math.isnan(r.h) else "-"]
+        if to_ritr:
+            d = r.data.get("ritr_distance")
+            cells.append(f"{d:.3g}" if isinstance(d, float) else "-")
+        lines.append(row(cells))
     return lines
 
 
@@ -382,7 +390,8 @@ def plot_links(name, result):
 
 
 def reproduce(name, result):
-    minutes = sum(r.get("wall_seconds", 0) for r in result["runs"]) / 60
+    # A resumed run's process time is its last part's; its own summed time counts every part.
+    minutes = sum(max(r.get("wall_seconds", 0), run_seconds(r)) for r in result["runs"]) / 60
     length = f"about {minutes:.0f} minutes" if minutes >= 1.5 else "about a minute"
     return (f"Reproduce: `ctest -R '^paper_{name}$'` in `build/` ({length}), then "
             "`scripts/benchmark_report.py --plots`.")
