@@ -3,7 +3,7 @@
 
     scripts/sweep.py SCENE.prm --fixed 0 1 2 --reference 3
         --vary "Adaptivity/hessian=reduced,quasi-newton" --vary "Adaptivity/max iterations=1,2,4"
-        [--set PATH=VALUE ...] [--accuracy-until T] [--work DIR] [--reuse] [--quick] [--out RESULT.json]
+        [--set PATH=VALUE ...] [--accuracy-until T] [--work DIR] [--timing-repeats N] [--reuse] [--quick] [--out RESULT.json]
 
 The fixed rungs are the scene without adaptivity refined k more times (scripts/ladder.py);
 the reference is one more, finer rung that every other run is measured against (mean over
@@ -17,7 +17,8 @@ The result holds every run with its time over that of a fixed mesh of its accura
 (interpolated between the rungs), the front of all of them and r-ITR's own front, its knee
 (scripts/accuracy_front.py), the run of the best time to accuracy (the smallest such ratio),
 and the verdicts of both against the fixed rungs; the runs go
-one after another, so that their times are comparable. `--reuse` keeps runs already finished
+one after another, so that their times are comparable; `--timing-repeats N` times each run
+shorter than ten seconds as the fastest of N. `--reuse` keeps runs already finished
 in the work directory with the same input and resumes stopped ones (a sweep cut short goes on
 where it stopped; scripts/ladder.py). `--quick` runs two steps of
 the two coarsest fixed rungs (the second as the reference) and of the first two r-ITR
@@ -76,6 +77,8 @@ def main():
     p.add_argument("--accuracy-until", type=float, metavar="T",
                    help="accuracy over the frames up to time T only (where the reference is converged)")
     p.add_argument("--work", help="directory for the runs (default: a temporary one)")
+    p.add_argument("--timing-repeats", type=int, default=1, metavar="N",
+                   help="time each run shorter than ten seconds as the fastest of N runs (scripts/ladder.py)")
     p.add_argument("--reuse", action="store_true",
                    help="keep the runs of the work directory that finished with the same input (scripts/ladder.py)")
     p.add_argument("--quick", action="store_true", help="two steps of the coarsest runs only")
