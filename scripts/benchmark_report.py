@@ -390,8 +390,9 @@ def plot_links(name, result):
 
 
 def reproduce(name, result):
-    # A resumed run's process time is its last part's; its own summed time counts every part.
-    minutes = sum(max(r.get("wall_seconds", 0), run_seconds(r)) for r in result["runs"]) / 60
+    # A resumed run's process time is its last part's; its own summed time counts every part. A
+    # short run timed as the fastest of several (--timing-repeats) ran that many times.
+    minutes = sum(max(r.get("wall_seconds", 0), run_seconds(r)) * r.get("timing_repeats", 1) for r in result["runs"]) / 60
     length = f"about {minutes:.0f} minutes" if minutes >= 1.5 else "about a minute"
     return (f"Reproduce: `ctest -R '^paper_{name}$'` in `build/` ({length}), then "
             "`scripts/benchmark_report.py --plots`.")
