@@ -234,7 +234,7 @@ def gap_table(result, runs):
     also r-ITR's distance to each fixed rung: whether the ladder moves toward r-ITR."""
     to_ritr = any("ritr_distance" in r.data for r in runs)
     lines = header(["run"] + COST + ["lowest point", "outcome", f"mean Hausdorff to {result['reference']}"]
-                   + (["r-ITR's mean Hausdorff to it"] if to_ritr else []))
+                   + (["r-ITR's distance to this rung"] if to_ritr else []))
     for r in runs:
         outcome = ("passes" if r.passes else "locks") if r.passes is not None else "-"
         low = f"{r.low:.3f}" if not math.isnan(r.low) else "-"
@@ -280,7 +280,10 @@ def gap_verdict(result, runs):
     if not passing:
         return text + f"every fixed rung locks, up to {fixed[-1].v:,} vertices."
     first = passing[0]
-    return text + f"the first fixed rung that passes has {first.v:,} vertices (r-ITR in {share(ritr.t, first.t)} its time)."
+    text += f"the first fixed rung that passes has {first.v:,} vertices (r-ITR in {share(ritr.t, first.t)} its time)"
+    if ((result.get("headline") or {}).get("time_to_accuracy") or {"matched": ""}).get("matched") is None:
+        text += ", but by distance to the finest rung r-ITR is further than every coarser rung"  # passes, moves otherwise
+    return text + "."
 
 
 def friction_verdict(result, runs):

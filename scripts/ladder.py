@@ -27,7 +27,8 @@ of those variants, repeats of it under perturbations at round-off (at its run's 
 doc/parallel.md), their memory the sum of the processes' peaks; `--pass-below` and
 `--corner-touch` measure the last frame
 (scripts/frame_metrics.py); with `--pass-below` each fixed rung also records r-ITR's mean
-Hausdorff distance to it (`ritr_distance`): whether the ladder moves toward r-ITR as it refines.
+Hausdorff distance to it (`ritr_distance`, up to `--accuracy-until` when given): whether the ladder
+moves toward r-ITR as it refines.
 On a gap scene the headline sets r-ITR that passes against the coarsest fixed rung that passes. Every run of a dynamic scene also records its kinetic energy in each
 output frame (`kinetic_energy_over_time`), and with `--end-heights` the heights of its two ends
 (`end_heights_over_time`). `--quick` runs two steps of r-ITR and of the two
@@ -41,6 +42,7 @@ import argparse
 from collections import defaultdict
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -175,11 +177,14 @@ def run_rung(args, scene_text, name, overrides, work, processes=1):
     except (OSError, ValueError) as e:
         run["failure"] = f"no summary.json: {e}"
     repeats = getattr(args, "timing_repeats", 1)
-    if earlier is None and repeats > 1 and not args.quick and code == 0 and run.get("total_wall_seconds", SHORT_RUN_SECONDS) < SHORT_RUN_SECONDS:
-        fastest_of_repeats(run, command, os.path.join(work, name + ".repeat.log"), repeats)
+    if (earlier is None and repeats > 1 and not args.quick and processes == 1 and code == 0
+            and run.get("total_wall_seconds", SHORT_RUN_SECONDS) < SHORT_RUN_SECONDS):
+        scratch = os.path.join(work, name + ".repeat")
+        repeat_prm = write_variant(args.scene, dict(overrides, **{"output directory": scratch}), scratch + ".prm")
+        fastest_of_repeats(run, [args.ritr, repeat_prm], scratch, repeats)
         with open(measured, "w") as f:
             json.dump({"prm": prm_text, "exit_code": code, "wall_seconds": run["wall_seconds"], "peak_rss_bytes": rss,
-                       "fastest_own_seconds": run["total_wall_seconds"], "timing_repeats": repeats}, f)
+                       "fastest_own_seconds": run["total_wall_seconds"], "timing_repeats": run["timing_repeats"]}, f)
     elif earlier and earlier[0] == "finished" and "fastest_own_seconds" in earlier[1]:
         run.update(total_wall_seconds=earlier[1]["fastest_own_seconds"], timing_repeats=earlier[1]["timing_repeats"])
     print(f"ladder: {name}: exit {code}, {run.get('n_vertices', '?')} vertices, {run['wall_seconds']:.1f} s, "
@@ -191,20 +196,28 @@ def run_rung(args, scene_text, name, overrides, work, processes=1):
 SHORT_RUN_SECONDS = 10.0
 
 
-def fastest_of_repeats(run, command, log_path, repeats):
+def fastest_of_repeats(run, command, scratch, repeats):
     """A run of under a second moves by up to a third between sittings, enough to move a verdict
-    of time to accuracy: with --timing-repeats the run is repeated, and its wall and own times are
-    the fastest of all. A run is deterministic, so the repeats rewrite the same outputs."""
+    of time to accuracy: with --timing-repeats the run is repeated into the directory `scratch`
+    (removed afterwards: the run's own outputs stay as they are), and its wall and own times are
+    the fastest of all. A repeat that fails or ends at another energy (a run is deterministic on
+    one process) stops the repeats and is recorded in `timing_repeat_failure`."""
     walls, own = [run["wall_seconds"]], [run["total_wall_seconds"]]
     for _ in range(repeats - 1):
-        code, wall, _ = measure(command, log_path)
-        with open(os.path.join(run["directory"], "summary.json")) as f:
-            summary = json.load(f)
+        code, wall, _ = measure(command, scratch + ".log")
+        try:
+            with open(os.path.join(scratch, "summary.json")) as f:
+                summary = json.load(f)
+        except (OSError, ValueError):
+            summary = {}
         if code != 0 or summary.get("final_energy") != run.get("final_energy"):
-            raise SystemExit(f"ladder: {run['name']}: a timing repeat ended otherwise (exit {code})")
+            run["timing_repeat_failure"] = f"a repeat ended otherwise (exit {code}, energy {summary.get('final_energy')})"
+            print(f"ladder: {run['name']}: {run['timing_repeat_failure']}; timed on {len(own)} runs", flush=True)
+            break
         walls.append(wall)
         own.append(summary["total_wall_seconds"])
-    run.update(wall_seconds=min(walls), total_wall_seconds=min(own), timing_repeats=repeats)
+    shutil.rmtree(scratch, ignore_errors=True)
+    run.update(wall_seconds=min(walls), total_wall_seconds=min(own), timing_repeats=len(own))
 
 
 def hausdorff_until(per_frame, until):
@@ -345,7 +358,7 @@ def gap_headline(runs, reference, baseline_rss, draws=()):
     when r-ITR passes it is set against the coarsest fixed rung that passes too; its distances to
     the reference (`time_to_accuracy`) stay in the headline beside that."""
     ritr = runs[0]
-    if not ritr.get("passes"):
+    if not ritr.get("passes") or reference["exit_code"] != 0:
         return hausdorff_headline(runs, reference, baseline_rss, draws)
     if not reference.get("passes"):
         return {"matching_fixed": None,
@@ -490,7 +503,9 @@ def main():
                 # Whether the fixed ladder moves toward r-ITR as it refines (paper Fig. 2: only
                 # the finest fixed mesh matches r-ITR's motion).
                 c = distances(args, ritr, run)
-                run["ritr_distance"] = c if isinstance(c, str) else c["mean_hausdorff"]
+                window = (hausdorff_until(c["per_frame"], args.accuracy_until)
+                          if not isinstance(c, str) and args.accuracy_until is not None else None)
+                run["ritr_distance"] = c if isinstance(c, str) else window[0] if window else c["mean_hausdorff"]
         if args.corner_touch is not None and run["exit_code"] == 0:
             run["corner_distances"] = corner_distances(run["directory"], args.corner_touch)
 

@@ -18,12 +18,12 @@ def run(name, passes, distance, seconds, vertices, adaptivity=False):
     return r
 
 
-def ladder(ritr_passes=True, reference_passes=True):
+def ladder(ritr_passes=True, reference_passes=True, r2_passes=False):
     """r-ITR (passes, but further from the reference than the locked rungs), three rungs that lock
-    and a reference that passes."""
+    (or the third passes) and a reference that passes."""
     return [run("ritr", ritr_passes, 0.11, 8.0, 167, adaptivity=True),
             run("fixed_r0", False, 0.08, 2.0, 167), run("fixed_r1", False, 0.06, 14.0, 943),
-            run("fixed_r2", False, 0.04, 250.0, 6161), run("fixed_r3", reference_passes, None, 16000.0, 44113)]
+            run("fixed_r2", r2_passes, 0.04, 250.0, 6161), run("fixed_r3", reference_passes, None, 16000.0, 44113)]
 
 
 class GapHeadline(unittest.TestCase):
@@ -37,6 +37,19 @@ class GapHeadline(unittest.TestCase):
         # The distances say what they say: every locked rung is closer than r-ITR.
         self.assertIsNone(head["time_to_accuracy"]["matched"])
         self.assertIn("0.11", head["time_to_accuracy"]["sentence"])
+
+    def test_the_coarsest_passing_rung_not_the_reference(self):
+        runs = ladder(r2_passes=True)
+        head = gap_headline(runs, runs[-1], 1_000_000)
+        self.assertEqual(head["matching_fixed"], "fixed_r2")
+        self.assertAlmostEqual(head["time_ratio_ritr_to_fixed"], 8.0 / 250.0, places=15)
+
+    def test_a_failed_reference_says_so(self):
+        runs = ladder()
+        runs[-1].update(exit_code=3, passes=None)
+        head = gap_headline(runs, runs[-1], 1_000_000)
+        self.assertIsNone(head["matching_fixed"])
+        self.assertIn("did not finish", head["why"])
 
     def test_a_reference_that_locks_gives_no_comparison(self):
         runs = ladder(reference_passes=False)

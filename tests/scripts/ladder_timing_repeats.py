@@ -24,6 +24,7 @@ times = [float(t) for t in os.environ["FAKE_TIMES"].split(",")]
 os.makedirs(directory, exist_ok=True)
 json.dump({"complete": True, "n_vertices": 9, "final_energy": -1.5, "total_wall_seconds": times[calls]},
           open(os.path.join(directory, "summary.json"), "w"))
+sys.exit(1 if str(calls) in os.environ.get("FAKE_FAILS", "").split(",") else 0)
 """
 
 
@@ -41,9 +42,10 @@ class TimingRepeats(unittest.TestCase):
     def tearDown(self):
         self.work.cleanup()
 
-    def run_it(self, times, reuse=False):
+    def run_it(self, times, reuse=False, quick=False, fails=()):
         os.environ["FAKE_TIMES"] = ",".join(map(str, times))
-        args = argparse.Namespace(scene=self.scene, ritr=self.ritr, quick=False, reuse=reuse, timing_repeats=3)
+        os.environ["FAKE_FAILS"] = ",".join(map(str, fails))
+        args = argparse.Namespace(scene=self.scene, ritr=self.ritr, quick=quick, reuse=reuse, timing_repeats=3)
         with open(self.scene) as f:
             return run_rung(args, f.read(), "ritr", {}, self.work.name)
 
@@ -51,17 +53,44 @@ class TimingRepeats(unittest.TestCase):
         with open(os.path.join(self.work.name, "calls")) as f:
             return int(f.read())
 
+    def summary_time(self):
+        with open(os.path.join(self.work.name, "ritr", "summary.json")) as f:
+            return json.load(f)["total_wall_seconds"]
+
     def test_a_short_run_keeps_its_fastest_time(self):
         run = self.run_it([0.9, 0.5, 0.7])
         self.assertEqual(self.calls(), 3)
         self.assertEqual(run["total_wall_seconds"], 0.5)
         self.assertEqual(run["timing_repeats"], 3)
+        # The repeats ran elsewhere: the run's own outputs are the first run's, the scratch is gone.
+        self.assertEqual(self.summary_time(), 0.9)
+        self.assertFalse(os.path.exists(os.path.join(self.work.name, "ritr.repeat")))
         with open(os.path.join(self.work.name, "ritr.measured.json")) as f:
             self.assertEqual(json.load(f)["fastest_own_seconds"], 0.5)
         # A ladder that reuses it keeps the fastest time, though summary.json holds the last.
         again = self.run_it([0.9, 0.5, 0.7], reuse=True)
         self.assertEqual(self.calls(), 3)
         self.assertEqual(again["total_wall_seconds"], 0.5)
+
+    def test_a_failed_repeat_stops_the_repeats_and_keeps_the_run(self):
+        run = self.run_it([0.9, 0.5, 0.7], fails=[1])
+        self.assertEqual(self.calls(), 2)
+        self.assertEqual(run["exit_code"], 0)
+        self.assertEqual(run["total_wall_seconds"], 0.9)
+        self.assertEqual(run["timing_repeats"], 1)
+        self.assertIn("exit 1", run["timing_repeat_failure"])
+        self.assertEqual(self.summary_time(), 0.9)
+
+    def test_a_quick_run_runs_once(self):
+        run = self.run_it([0.9, 0.5, 0.7], quick=True)
+        self.assertEqual(self.calls(), 1)
+        self.assertNotIn("timing_repeats", run)
+
+    def test_a_failed_run_is_not_repeated(self):
+        run = self.run_it([0.9, 0.5, 0.7], fails=[0])
+        self.assertEqual(self.calls(), 1)
+        self.assertEqual(run["exit_code"], 1)
+        self.assertNotIn("timing_repeats", run)
 
     def test_a_long_run_runs_once(self):
         run = self.run_it([25.0, 1.0, 1.0])
