@@ -176,17 +176,21 @@ def run_rung(args, scene_text, name, overrides, work, processes=1):
             run["peak_rss_bytes"] = sum(summary["peak_rss_bytes_per_process"])  # wait4 sees one process
     except (OSError, ValueError) as e:
         run["failure"] = f"no summary.json: {e}"
-    repeats = getattr(args, "timing_repeats", 1)
-    if (earlier is None and repeats > 1 and not args.quick and processes == 1 and code == 0
+    repeats, timed = getattr(args, "timing_repeats", 1), 1
+    if earlier and earlier[0] == "finished" and "fastest_own_seconds" in earlier[1]:
+        run.update(total_wall_seconds=earlier[1]["fastest_own_seconds"], timing_repeats=earlier[1]["timing_repeats"])
+        timed = run["timing_repeats"]
+    # A short run timed on fewer runs than asked (a fresh one, one reused from a ladder without
+    # repeats, a resumed one whose time sums its parts) gets the repeats it lacks.
+    if (repeats > timed and not args.quick and processes == 1 and code == 0
             and run.get("total_wall_seconds", SHORT_RUN_SECONDS) < SHORT_RUN_SECONDS):
         scratch = os.path.join(work, name + ".repeat")
         repeat_prm = write_variant(args.scene, dict(overrides, **{"output directory": scratch}), scratch + ".prm")
-        fastest_of_repeats(run, [args.ritr, repeat_prm], scratch, repeats)
+        fastest_of_repeats(run, [args.ritr, repeat_prm], scratch, repeats - timed + 1)
+        run["timing_repeats"] += timed - 1
         with open(measured, "w") as f:
             json.dump({"prm": prm_text, "exit_code": code, "wall_seconds": run["wall_seconds"], "peak_rss_bytes": rss,
                        "fastest_own_seconds": run["total_wall_seconds"], "timing_repeats": run["timing_repeats"]}, f)
-    elif earlier and earlier[0] == "finished" and "fastest_own_seconds" in earlier[1]:
-        run.update(total_wall_seconds=earlier[1]["fastest_own_seconds"], timing_repeats=earlier[1]["timing_repeats"])
     print(f"ladder: {name}: exit {code}, {run.get('n_vertices', '?')} vertices, {run['wall_seconds']:.1f} s, "
           f"{rss / 2**20:.0f} MiB", flush=True)
     return run

@@ -42,10 +42,10 @@ class TimingRepeats(unittest.TestCase):
     def tearDown(self):
         self.work.cleanup()
 
-    def run_it(self, times, reuse=False, quick=False, fails=()):
+    def run_it(self, times, reuse=False, quick=False, fails=(), repeats=3):
         os.environ["FAKE_TIMES"] = ",".join(map(str, times))
         os.environ["FAKE_FAILS"] = ",".join(map(str, fails))
-        args = argparse.Namespace(scene=self.scene, ritr=self.ritr, quick=quick, reuse=reuse, timing_repeats=3)
+        args = argparse.Namespace(scene=self.scene, ritr=self.ritr, quick=quick, reuse=reuse, timing_repeats=repeats)
         with open(self.scene) as f:
             return run_rung(args, f.read(), "ritr", {}, self.work.name)
 
@@ -71,6 +71,15 @@ class TimingRepeats(unittest.TestCase):
         again = self.run_it([0.9, 0.5, 0.7], reuse=True)
         self.assertEqual(self.calls(), 3)
         self.assertEqual(again["total_wall_seconds"], 0.5)
+
+    def test_a_reused_run_timed_once_gets_the_repeats_it_lacks(self):
+        self.run_it([0.9, 0.5, 0.7], repeats=1)
+        self.assertEqual(self.calls(), 1)
+        run = self.run_it([0.9, 0.5, 0.7], reuse=True)
+        self.assertEqual(self.calls(), 3)
+        self.assertEqual(run["total_wall_seconds"], 0.5)
+        self.assertEqual(run["timing_repeats"], 3)
+        self.assertEqual(self.summary_time(), 0.9)
 
     def test_a_failed_repeat_stops_the_repeats_and_keeps_the_run(self):
         run = self.run_it([0.9, 0.5, 0.7], fails=[1])
