@@ -38,7 +38,7 @@ import textwrap
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from accuracy_front import fixed_time_at, verdict  # noqa: E402
-from ladder import is_ritr, run_seconds  # noqa: E402
+from ladder import further_than_every_rung, is_ritr, run_seconds  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 DOC = os.path.join(ROOT, "doc", "benchmarks.md")
@@ -240,8 +240,7 @@ def gap_table(result, runs):
         low = f"{r.low:.3f}" if not math.isnan(r.low) else "-"
         cells = [name_cell(r)] + cost_cells(r) + [low, outcome, f"{r.h:.3g}" if not math.isnan(r.h) else "-"]
         if to_ritr:
-            d = r.data.get("ritr_distance")
-            cells.append(f"{d:.3g}" if isinstance(d, float) else "-")
+            cells.append(f"{r.data['ritr_distance']:.3g}" if "ritr_distance" in r.data else "-")
         lines.append(row(cells))
     return lines
 
@@ -281,8 +280,8 @@ def gap_verdict(result, runs):
         return text + f"every fixed rung locks, up to {fixed[-1].v:,} vertices."
     first = passing[0]
     text += f"the first fixed rung that passes has {first.v:,} vertices (r-ITR in {share(ritr.t, first.t)} its time)"
-    if ((result.get("headline") or {}).get("time_to_accuracy") or {"matched": ""}).get("matched") is None:
-        text += ", but by distance to the finest rung r-ITR is further than every coarser rung"  # passes, moves otherwise
+    if further_than_every_rung(result.get("headline") or {}):
+        text += ", but by distance to the finest rung r-ITR is further than every coarser rung"
     return text + "."
 
 

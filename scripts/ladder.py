@@ -26,10 +26,10 @@ nodes held), and `--draws NAME...` has the headline judge r-ITR by the mean dist
 of those variants, repeats of it under perturbations at round-off (at its run's time); `--mpirun-from K` runs the fixed rungs of K and more refinements on `--ranks` processes (`mpirun`,
 doc/parallel.md), their memory the sum of the processes' peaks; `--pass-below` and
 `--corner-touch` measure the last frame
-(scripts/frame_metrics.py); with `--pass-below` each fixed rung also records r-ITR's mean
-Hausdorff distance to it (`ritr_distance`, up to `--accuracy-until` when given): whether the ladder
-moves toward r-ITR as it refines.
-On a gap scene the headline sets r-ITR that passes against the coarsest fixed rung that passes. Every run of a dynamic scene also records its kinetic energy in each
+(scripts/frame_metrics.py). With `--pass-below` each fixed rung also records r-ITR's mean
+Hausdorff distance to it (`ritr_distance`, up to `--accuracy-until` when given: whether the ladder
+moves toward r-ITR as it refines), and the headline sets r-ITR that passes against the coarsest
+fixed rung that passes. Every run of a dynamic scene also records its kinetic energy in each
 output frame (`kinetic_energy_over_time`), and with `--end-heights` the heights of its two ends
 (`end_heights_over_time`). `--quick` runs two steps of r-ITR and of the two
 coarsest rungs, so that a scene cannot rot unnoticed. `--timing-repeats N` times every run
@@ -186,8 +186,8 @@ def run_rung(args, scene_text, name, overrides, work, processes=1):
             and run.get("total_wall_seconds", SHORT_RUN_SECONDS) < SHORT_RUN_SECONDS):
         scratch = os.path.join(work, name + ".repeat")
         repeat_prm = write_variant(args.scene, dict(overrides, **{"output directory": scratch}), scratch + ".prm")
-        fastest_of_repeats(run, [args.ritr, repeat_prm], scratch, repeats - timed + 1)
-        run["timing_repeats"] += timed - 1
+        run["timing_repeats"] = timed
+        fastest_of_repeats(run, [args.ritr, repeat_prm], scratch, repeats - timed)
         with open(measured, "w") as f:
             json.dump({"prm": prm_text, "exit_code": code, "wall_seconds": run["wall_seconds"], "peak_rss_bytes": rss,
                        "fastest_own_seconds": run["total_wall_seconds"], "timing_repeats": run["timing_repeats"]}, f)
@@ -200,14 +200,15 @@ def run_rung(args, scene_text, name, overrides, work, processes=1):
 SHORT_RUN_SECONDS = 10.0
 
 
-def fastest_of_repeats(run, command, scratch, repeats):
+def fastest_of_repeats(run, command, scratch, more):
     """A run of under a second moves by up to a third between sittings, enough to move a verdict
-    of time to accuracy: with --timing-repeats the run is repeated into the directory `scratch`
-    (removed afterwards: the run's own outputs stay as they are), and its wall and own times are
-    the fastest of all. A repeat that fails or ends at another energy (a run is deterministic on
-    one process) stops the repeats and is recorded in `timing_repeat_failure`."""
+    of time to accuracy: with --timing-repeats the run is repeated `more` times into the directory
+    `scratch` (removed afterwards: the run's own outputs stay as they are), its wall and own times
+    become the fastest of all and `timing_repeats` counts the runs they were taken over. A repeat
+    that fails or ends at another energy (a run is deterministic on one process) stops the
+    repeats and is recorded in `timing_repeat_failure`."""
     walls, own = [run["wall_seconds"]], [run["total_wall_seconds"]]
-    for _ in range(repeats - 1):
+    for _ in range(more):
         code, wall, _ = measure(command, scratch + ".log")
         try:
             with open(os.path.join(scratch, "summary.json")) as f:
@@ -221,7 +222,7 @@ def fastest_of_repeats(run, command, scratch, repeats):
         walls.append(wall)
         own.append(summary["total_wall_seconds"])
     shutil.rmtree(scratch, ignore_errors=True)
-    run.update(wall_seconds=min(walls), total_wall_seconds=min(own), timing_repeats=len(own))
+    run.update(wall_seconds=min(walls), total_wall_seconds=min(own), timing_repeats=run["timing_repeats"] + len(own) - 1)
 
 
 def hausdorff_until(per_frame, until):
@@ -355,6 +356,13 @@ def energy_headline(runs, baseline_rss):
         why = "coarsest fixed rung with final energy <= r-ITR's"
     return dict(cost_ratios(ritr, matching, baseline_rss), why=why,
                 energy_ritr=ritr["final_energy"], energy_fixed=matching["final_energy"])
+
+
+def further_than_every_rung(headline):
+    """Whether the headline's r-ITR is further from the reference than every other fixed rung (its
+    time-to-accuracy verdict matched none): on a gap scene, r-ITR passes but moves otherwise."""
+    verdict = headline.get("time_to_accuracy")
+    return verdict is not None and verdict.get("matched") is None
 
 
 def gap_headline(runs, reference, baseline_rss, draws=()):
@@ -507,9 +515,11 @@ def main():
                 # Whether the fixed ladder moves toward r-ITR as it refines (paper Fig. 2: only
                 # the finest fixed mesh matches r-ITR's motion).
                 c = distances(args, ritr, run)
-                window = (hausdorff_until(c["per_frame"], args.accuracy_until)
-                          if not isinstance(c, str) and args.accuracy_until is not None else None)
-                run["ritr_distance"] = c if isinstance(c, str) else window[0] if window else c["mean_hausdorff"]
+                if isinstance(c, str):
+                    run["ritr_distance_failure"] = c
+                else:
+                    window = hausdorff_until(c["per_frame"], args.accuracy_until) if args.accuracy_until is not None else None
+                    run["ritr_distance"] = window[0] if window else c["mean_hausdorff"]
         if args.corner_touch is not None and run["exit_code"] == 0:
             run["corner_distances"] = corner_distances(run["directory"], args.corner_touch)
 

@@ -17,7 +17,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmark_report import percent, seconds_text  # noqa: E402
-from ladder import run_seconds  # noqa: E402
+from ladder import further_than_every_rung, run_seconds  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 BEGIN, END = "<!-- results table: scripts/results_table.py -->", "<!-- end of results table -->"
@@ -74,8 +74,8 @@ def row(name, title):
             return (f"| {link} | {vertices(ritr)} | {measure(ritr)} | {duration(ritr)} | {vertices(finest)} "
                     f"| {measure(finest)} | {duration(finest)} | no fixed rung passes |")
         verdict = f"passes like the {vertices(fixed)}-vertex mesh in {percent(100 * run_seconds(ritr) / run_seconds(fixed))} % of its time"
-        if (head.get("time_to_accuracy") or {"matched": ""}).get("matched") is None:
-            verdict += "; by distance to it, further than every coarser rung"  # it passes, but moves otherwise
+        if further_than_every_rung(head):
+            verdict += "; by distance to it, further than every coarser rung"
     else:
         until = result.get("accuracy_until")
         window = f" (t <= {until:g})" if until is not None else ""

@@ -7,7 +7,7 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from ladder import gap_headline  # noqa: E402
+from ladder import further_than_every_rung, gap_headline  # noqa: E402
 
 
 def run(name, passes, distance, seconds, vertices, adaptivity=False):
@@ -37,6 +37,16 @@ class GapHeadline(unittest.TestCase):
         # The distances say what they say: every locked rung is closer than r-ITR.
         self.assertIsNone(head["time_to_accuracy"]["matched"])
         self.assertIn("0.11", head["time_to_accuracy"]["sentence"])
+        self.assertTrue(further_than_every_rung(head))
+
+    def test_r_itr_closer_than_a_locked_rung_is_not_further_than_every_rung(self):
+        runs = ladder()
+        runs[0]["mean_hausdorff"] = 0.05
+        head = gap_headline(runs, runs[-1], 1_000_000)
+        self.assertEqual(head["matching_fixed"], "fixed_r3")
+        self.assertEqual(head["time_to_accuracy"]["matched"], "fixed_r1")
+        self.assertFalse(further_than_every_rung(head))
+        self.assertFalse(further_than_every_rung({"matching_fixed": None, "why": "no reference"}))
 
     def test_the_coarsest_passing_rung_not_the_reference(self):
         runs = ladder(r2_passes=True)
