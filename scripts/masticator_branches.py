@@ -4,10 +4,11 @@
     scripts/masticator_branches.py SCENE [--start T] [--refine K] [--iterations N] [--out JSON]
                                    [--work DIR] [--reuse]
 
-Runs, one after another: the fixed reference (every body's subdivisions times 5), r-ITR at the
-scene's settings and with N outer iterations per step, and then, from each r-ITR run's frame at
-time T, a fixed mesh on that frame's moved reference mesh refined K times (scripts/frame_mesh.py)
-started from exactly the frame's state (`start from`), and the same frame's mesh unrefined.
+Runs, one after another: the fixed reference (every body's subdivisions times 5), r-ITR as the
+scene and the --set overrides give it and with N outer iterations per step, and then, from each
+r-ITR run's frame at time T, a fixed mesh on that frame's moved reference mesh refined K times
+(scripts/frame_mesh.py) started from exactly the frame's state (`start from`), and the same
+frame's mesh unrefined.
 Every run is measured against the reference (mean Hausdorff distance, by frame) and each
 restarted run also against the r-ITR run it started from, so that the result says whether a
 finer mesh follows an r-ITR run's path from T or goes its own way (doc/benchmarks.md,
@@ -107,7 +108,7 @@ def main():
         run["kinetic_energy_over_time"] = kinetic_energies(run["directory"], densities)
     fine = [by_name[f"fixed_r{args.refine}_from_{source['name']}"] for source in (ritr, more)]
     after = [mean_after(run, BITE_END) for run in fine]
-    sentence = (f"From the state of r-ITR at the scene's settings at t = {args.start:g} the "
+    sentence = (f"From the state of r-ITR at t = {args.start:g} the "
                 f"{fine[0].get('n_vertices', 0):,}-vertex fixed mesh ends {after[0]:.3f} from {reference['name']} on "
                 f"average after the bite (t > {BITE_END:g}); from that of r-ITR with {args.iterations} outer "
                 f"iteration{'s' if args.iterations != 1 else ''} per step, {after[1]:.3f}.")
