@@ -2,10 +2,10 @@
 """Which branch a fine mesh takes from r-ITR's states: fixed meshes started from r-ITR frames.
 
     scripts/masticator_branches.py SCENE [--start T] [--refine K] [--iterations N] [--out JSON]
-                                   [--work DIR] [--reuse]
+                                   [--work DIR] [--reuse] [--set PATH=VALUE ...]
 
 Runs, one after another: the fixed reference (every body's subdivisions times 5), r-ITR as the
-scene and the --set overrides give it and with N outer iterations per step, and then, from each
+scene and the --set overrides give it, and with N outer iterations per step, and then, from each
 r-ITR run's frame at time T, a fixed mesh on that frame's moved reference mesh refined K times
 (scripts/frame_mesh.py) started from exactly the frame's state (`start from`), and the same
 frame's mesh unrefined.
