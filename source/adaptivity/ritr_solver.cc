@@ -339,13 +339,14 @@ namespace ritr
     // initial cell, and the region may grow to a hundred of them.
     const double initial_radius = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
     const double max_radius     = 100 * initial_radius;
-    const bool   quasi_newton   = settings_.hessian == RitrHessian::quasi_newton;
     // Quasi-Newton steps take one or two outer iterations, so the region a step ends with is
-    // where the next one starts (never below the initial radius). The reduced solve does so on
+    // where the next one starts (never below the initial radius; reduced-first's region is the
+    // one its quasi-Newton iterations go on in). The reduced solve does so on
     // request: with one iteration per step and a fresh region each step, the masticator's mesh
     // could not follow the bar by more than half a cell per step.
     double  step_radius = initial_radius;
-    double &radius      = quasi_newton || settings_.carry_trust_region ? carried_radius_ : step_radius;
+    double &radius      = settings_.hessian != RitrHessian::reduced || settings_.carry_trust_region ? carried_radius_ :
+                                                                                                      step_radius;
     radius              = std::max(radius, initial_radius);
     double       first_gradient = 0;
     MeasureBarrierModel<dim> barrier(mesh_, basis_, w_hat_, measure_barrier_.stiffness());
@@ -355,6 +356,8 @@ namespace ritr
     for (; r.outer_iterations < settings_.max_outer_iterations; ++r.outer_iterations)
       {
         terms_.set_reference(r.u);
+        const bool quasi_newton = settings_.hessian == RitrHessian::quasi_newton ||
+                                  (settings_.hessian == RitrHessian::reduced_first && r.outer_iterations > 0);
         Eigen::VectorXd                g;
         std::optional<ReducedHessian>  hessian;
         std::optional<OuterModel<dim>> model;

@@ -183,3 +183,7 @@ TEST(RitrOptimality1D, InexactInnerSolvesReachTheSameMinimum)
 // The first-order outer solve (reduced gradient, quasi-Newton curvature) reaches the same
 // brute-force mesh and energy.
 TEST(RitrOptimality1D, QuasiNewtonMatchesBruteForceMinimum) { check_optimality(RitrHessian::quasi_newton); }
+
+// The exact reduced Hessian for the first outer iteration and quasi-Newton curvature for the
+// rest reaches it too.
+TEST(RitrOptimality1D, ReducedFirstMatchesBruteForceMinimum) { check_optimality(RitrHessian::reduced_first); }

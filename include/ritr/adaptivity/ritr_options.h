@@ -27,6 +27,10 @@ namespace ritr
   // quasi-newton in dynamics, where the optimal mesh moves little from one step to the next and
   // one cheap outer iteration per step buys the most accuracy per second (doc/benchmarks.md,
   // time to accuracy), and reduced in statics, where every load step needs its mesh converged.
+  // `reduced_first` takes the exact reduced Hessian for a step's first outer iteration and the
+  // quasi-Newton curvature for the rest: the exact model moves the mesh where the last step's
+  // curvature pairs no longer describe R (a body bent into new contact), and the cheap
+  // iterations after it refine that mesh (doc/benchmarks.md, Masticator).
   enum class RitrHessian
   {
     automatic,
@@ -34,11 +38,15 @@ namespace ritr
     full,
     filtered,
     reduced,
-    quasi_newton
+    quasi_newton,
+    reduced_first
   };
 
   // The trust-region outer solves (physical admissibility kept at every trial mesh).
-  inline bool is_trust_region(const RitrHessian h) { return h == RitrHessian::reduced || h == RitrHessian::quasi_newton; }
+  inline bool is_trust_region(const RitrHessian h)
+  {
+    return h == RitrHessian::reduced || h == RitrHessian::quasi_newton || h == RitrHessian::reduced_first;
+  }
 
   enum class PredictorProjection
   {
@@ -68,12 +76,13 @@ namespace ritr
     {{TransferIntegrationChoice::automatic, "auto"},
      {TransferIntegrationChoice::exact, "exact"},
      {TransferIntegrationChoice::quadrature, "quadrature"}}};
-  inline constexpr EnumNames<RitrHessian, 6> ritr_hessian_names{{{RitrHessian::automatic, "auto"},
+  inline constexpr EnumNames<RitrHessian, 7> ritr_hessian_names{{{RitrHessian::automatic, "auto"},
                                                                   {RitrHessian::truncated, "truncated"},
                                                                   {RitrHessian::full, "full"},
                                                                   {RitrHessian::filtered, "filtered"},
                                                                   {RitrHessian::reduced, "reduced"},
-                                                                  {RitrHessian::quasi_newton, "quasi-newton"}}};
+                                                                  {RitrHessian::quasi_newton, "quasi-newton"},
+                                                                  {RitrHessian::reduced_first, "reduced-first"}}};
   inline constexpr EnumNames<InertiaForm, 2> inertia_form_names{
     {{InertiaForm::corrected, "corrected"}, {InertiaForm::uncorrected, "uncorrected"}}};
   inline constexpr EnumNames<PredictorProjection, 2> predictor_projection_names{
@@ -84,7 +93,7 @@ namespace ritr
                                                                     {Admissibility::physical, "physical"},
                                                                     {Admissibility::both, "both"}}};
 
-  RitrHessian         ritr_hessian_from(const std::string &name);          // auto|truncated|full|filtered|reduced|quasi-newton
+  RitrHessian         ritr_hessian_from(const std::string &name);          // auto|...|reduced|quasi-newton|reduced-first
   InertiaForm         inertia_form_from(const std::string &name);          // corrected|uncorrected
   PredictorProjection predictor_projection_from(const std::string &name);  // in-|after-optimization
   Admissibility       admissibility_from(const std::string &name);         // none|geometric|physical|both
