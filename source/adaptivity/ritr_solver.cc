@@ -340,14 +340,14 @@ namespace ritr
     const double initial_radius = 0.5 * std::pow(10 * w_hat_, 1.0 / dim);
     const double max_radius     = 100 * initial_radius;
     // Quasi-Newton steps take one or two outer iterations, so the region a step ends with is
-    // where the next one starts (never below the initial radius; reduced-first's region is the
-    // one its quasi-Newton iterations go on in). The reduced solve does so on
-    // request: with one iteration per step and a fresh region each step, the masticator's mesh
-    // could not follow the bar by more than half a cell per step.
-    double  step_radius = initial_radius;
-    double &radius      = settings_.hessian != RitrHessian::reduced || settings_.carry_trust_region ? carried_radius_ :
-                                                                                                      step_radius;
-    radius              = std::max(radius, initial_radius);
+    // where the next one starts (never below the initial radius), and reduced-first's quasi-Newton
+    // iterations go on in it. The reduced solve carries it on request: with one iteration per
+    // step and a fresh region each step, the masticator's mesh could not follow the bar by more
+    // than half a cell per step.
+    const bool carries_region = settings_.hessian != RitrHessian::reduced || settings_.carry_trust_region;
+    double     step_radius    = initial_radius;
+    double    &radius         = carries_region ? carried_radius_ : step_radius;
+    radius                    = std::max(radius, initial_radius);
     double       first_gradient = 0;
     MeasureBarrierModel<dim> barrier(mesh_, basis_, w_hat_, measure_barrier_.stiffness());
     const auto filter = [&](const Eigen::VectorXd &du, const Eigen::VectorXd &ddu) {
